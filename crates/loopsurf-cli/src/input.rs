@@ -1,0 +1,112 @@
+//! The mesh argument every command shares: a file or a built-in example,
+//! plus the hard-feature flags.
+
+use loopsurf::io::ReadOptions;
+use loopsurf::{examples, ControlNet, Error};
+use std::path::{Path, PathBuf};
+
+/// Where the control net comes from and which features are hard.
+#[derive(clap::Args, Debug)]
+pub struct Input {
+    /// Mesh file: .off, .obj, .ply, .stl or Cart3D .tri.
+    #[arg(value_name = "MESH", required_unless_present = "example")]
+    pub mesh: Option<PathBuf>,
+    /// A built-in control net instead of a file (viking, sphere, torus, cube, ...).
+    #[arg(long, value_name = "NAME", conflicts_with = "mesh")]
+    pub example: Option<String>,
+    /// Fan-split polygons into triangles instead of rejecting them.
+    #[arg(long)]
+    pub triangulate: bool,
+    /// Tag every edge whose dihedral angle exceeds DEG degrees as hard.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub hard_angle: Option<f64>,
+    /// Tag the edges listed in FILE (lines `i j`, 0-based) as hard.
+    #[arg(long, value_name = "FILE")]
+    pub hard_edges: Option<PathBuf>,
+    /// Tag the vertices listed in FILE (one 0-based index a line) as corners.
+    #[arg(long, value_name = "FILE")]
+    pub hard_vertices: Option<PathBuf>,
+}
+
+impl Input {
+    /// A name for reports: the file or `example:NAME`.
+    pub fn name(&self) -> String {
+        match (&self.mesh, &self.example) {
+            (Some(p), _) => p.display().to_string(),
+            (None, Some(e)) => format!("example:{e}"),
+            (None, None) => String::new(),
+        }
+    }
+
+    /// Reads or builds the net and applies the feature flags.
+    pub fn load(&self) -> Result<ControlNet, Error> {
+        let mut net = match (&self.mesh, &self.example) {
+            (Some(path), _) => ControlNet::read_with(
+                path,
+                &ReadOptions {
+                    triangulate: self.triangulate,
+                },
+            )?,
+            (None, Some(name)) => {
+                let ex = examples::by_name(name).ok_or_else(|| {
+                    Error::InvalidArgument(format!(
+                        "unknown example '{name}' (known: {})",
+                        examples::NAMES.join(", ")
+                    ))
+                })?;
+                ControlNet::from_arrays(ex.points, &ex.tris)?
+            }
+            (None, None) => return Err(Error::InvalidArgument("no mesh given".into())),
+        };
+        if let Some(deg) = self.hard_angle {
+            net.tag_by_angle(deg)?;
+        }
+        if let Some(path) = &self.hard_edges {
+            for (line, fields) in read_index_lines(path)? {
+                let [a, b] = fields[..] else {
+                    return Err(located(path, line, "expected two vertex indices `i j`"));
+                };
+                net.tag_edge(a, b).map_err(|e| e.in_file(path, Some(line)))?;
+            }
+        }
+        if let Some(path) = &self.hard_vertices {
+            for (line, fields) in read_index_lines(path)? {
+                let [v] = fields[..] else {
+                    return Err(located(path, line, "expected one vertex index"));
+                };
+                net.tag_vertex(v).map_err(|e| e.in_file(path, Some(line)))?;
+            }
+        }
+        Ok(net)
+    }
+}
+
+fn located(path: &Path, line: usize, message: &str) -> Error {
+    Error::Malformed {
+        line,
+        message: message.into(),
+    }
+    .in_file(path, None)
+}
+
+/// Non-blank, non-comment lines of a file of indices, with their line numbers.
+fn read_index_lines(path: &Path) -> Result<Vec<(usize, Vec<u32>)>, Error> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    let mut out = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let content = raw.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let fields = content
+            .split_whitespace()
+            .map(|f| f.parse::<u32>())
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|_| located(path, i + 1, &format!("'{content}' is not a list of vertex indices")))?;
+        out.push((i + 1, fields));
+    }
+    Ok(out)
+}

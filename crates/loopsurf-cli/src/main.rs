@@ -1,0 +1,58 @@
+//! The `loopsurf` command: translates arguments into library calls and
+//! library results into text. No geometry lives here.
+
+mod cmd_hard_edges;
+mod cmd_info;
+mod cmd_refine;
+mod input;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Exact Loop subdivision surfaces from legacy triangulations.
+#[derive(Parser)]
+#[command(name = "loopsurf", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Counts, valences, boundaries, hard features and the limit deviation of a control net.
+    Info(cmd_info::Args),
+    /// Prints every hard edge (boundary edges included) as a line `i j`, i < j, 0-based.
+    HardEdges(cmd_hard_edges::Args),
+    /// Uniform Loop refinement; the output format follows OUT's extension.
+    Refine(cmd_refine::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) if !err.use_stderr() => {
+            // --help and --version.
+            let _ = err.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(err) => {
+            // One line, like every other error: clap's first line names the problem.
+            let text = err.to_string();
+            let first = text.lines().next().unwrap_or("invalid arguments");
+            eprintln!("loopsurf: {}", first.trim_start_matches("error: "));
+            return ExitCode::from(2);
+        }
+    };
+    let result = match cli.command {
+        Command::Info(args) => cmd_info::run(args),
+        Command::HardEdges(args) => cmd_hard_edges::run(args),
+        Command::Refine(args) => cmd_refine::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("loopsurf: {err}");
+            ExitCode::from(2)
+        }
+    }
+}

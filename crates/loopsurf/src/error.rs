@@ -1,0 +1,131 @@
+//! One error type for the whole library.
+//!
+//! Every variant carries enough context to find the problem: the element
+//! (triangle or vertex index) and the offending indices or values. Errors
+//! found while reading a file are wrapped in [`Error::InFile`], which adds the
+//! file name and, for text formats, the line the element came from.
+//! [`Error::root`] strips that wrapper so callers (and tests) can match on the
+//! kind.
+
+use std::path::PathBuf;
+
+/// The result type used throughout loopsurf.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong in loopsurf.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The operating system refused to read or write a file.
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file extension names no format loopsurf knows.
+    #[error("{}: unknown mesh format (expected .off, .obj, .ply, .stl or .tri)", path.display())]
+    UnknownFormat { path: PathBuf },
+    /// A line or record that does not parse.
+    #[error("line {line}: {message}")]
+    Malformed { line: usize, message: String },
+    /// The file ends before the data its header announced.
+    #[error("truncated file: {message}")]
+    Truncated { message: String },
+    /// A face with more than three vertices where only triangles are accepted.
+    #[error("face {face} has {corners} vertices; only triangles are accepted (use --triangulate to fan-split polygons)")]
+    Polygon { face: usize, corners: usize },
+    /// No vertices or no triangles.
+    #[error("empty mesh: {nverts} vertices, {ntris} triangles")]
+    EmptyMesh { nverts: usize, ntris: usize },
+    /// A triangle refers to a vertex that does not exist.
+    #[error(
+        "triangle {tri} {verts:?} refers to vertex {index}, but there are only {nverts} vertices"
+    )]
+    IndexOutOfRange {
+        tri: usize,
+        verts: [i64; 3],
+        index: i64,
+        nverts: usize,
+    },
+    /// A triangle uses the same vertex twice.
+    #[error("triangle {tri} {verts:?} repeats vertex {index}")]
+    RepeatedIndex {
+        tri: usize,
+        verts: [u32; 3],
+        index: u32,
+    },
+    /// A triangle whose corners are collinear (to round-off).
+    #[error("triangle {tri} {verts:?} has zero area")]
+    ZeroArea { tri: usize, verts: [u32; 3] },
+    /// A coordinate that is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate {coords:?}")]
+    NonFiniteCoordinate { vertex: usize, coords: [f64; 3] },
+    /// An edge shared by three or more triangles.
+    #[error("non-manifold edge ({a}, {b}): shared by triangles {tris:?}")]
+    NonManifoldEdge { a: u32, b: u32, tris: Vec<u32> },
+    /// A vertex where two or more fans of triangles touch at a single point.
+    #[error("non-manifold vertex {vertex}: its {ntris} triangles form {fans} separate fans")]
+    NonManifoldVertex {
+        vertex: u32,
+        ntris: usize,
+        fans: usize,
+    },
+    /// Two neighbouring triangles traverse their shared edge in the same direction.
+    #[error(
+        "inconsistently oriented neighbours: triangles {tris:?} both traverse edge {a} -> {b}"
+    )]
+    InconsistentOrientation { a: u32, b: u32, tris: [u32; 2] },
+    /// A caller-supplied argument that makes no sense (unknown edge, bad level count, ...).
+    #[error("{0}")]
+    InvalidArgument(String),
+    /// An error found in a file: names the file and, where known, the line.
+    #[error("{}{}: {source}", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
+    InFile {
+        path: PathBuf,
+        line: Option<usize>,
+        #[source]
+        source: Box<Error>,
+    },
+}
+
+impl Error {
+    /// The error with any [`Error::InFile`] wrappers removed: the kind of problem.
+    pub fn root(&self) -> &Error {
+        match self {
+            Error::InFile { source, .. } => source.root(),
+            other => other,
+        }
+    }
+
+    /// Wraps the error with the file it was found in (and the line, if known).
+    pub fn in_file(self, path: impl Into<PathBuf>, line: Option<usize>) -> Error {
+        match self {
+            // Already located: keep the more precise inner location.
+            Error::InFile { .. } | Error::Io { .. } | Error::UnknownFormat { .. } => self,
+            other => Error::InFile {
+                path: path.into(),
+                line,
+                source: Box::new(other),
+            },
+        }
+    }
+
+    /// The triangle or vertex an error names, so a reader can map it to a line.
+    pub fn element(&self) -> Option<Element> {
+        match self.root() {
+            Error::IndexOutOfRange { tri, .. }
+            | Error::RepeatedIndex { tri, .. }
+            | Error::ZeroArea { tri, .. } => Some(Element::Triangle(*tri)),
+            Error::NonFiniteCoordinate { vertex, .. } => Some(Element::Vertex(*vertex)),
+            _ => None,
+        }
+    }
+}
+
+/// A mesh element an error refers to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Element {
+    Vertex(usize),
+    Triangle(usize),
+}

@@ -1,0 +1,24 @@
+//! loopsurf: a legacy surface triangulation as the control net of a Loop
+//! subdivision surface, queried like a CAD kernel.
+//!
+//! Layering (one-way, like OpenSubdiv's Sdc → Vtr → Far):
+//! [`rules`] (pure masks) → [`topology`] (connectivity only) →
+//! [`features`] (hard edges and vertex kinds) → [`net`] (positions) →
+//! [`refine`] (uniform subdivision). File formats live in [`io`], built-in
+//! shapes in [`examples`].
+
+pub mod error;
+pub mod examples;
+pub mod features;
+pub mod io;
+pub mod net;
+pub mod refine;
+pub mod rules;
+pub mod topology;
+
+pub use error::{Element, Error, Result};
+pub use features::{Features, VertexKind};
+pub use glam::DVec3;
+pub use net::ControlNet;
+pub use refine::{Refinement, SurfacePoint};
+pub use topology::Topology;

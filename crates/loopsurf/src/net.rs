@@ -1,0 +1,321 @@
+//! The control net: vertex positions over a validated topology, with its
+//! hard features. Everything a later stage relies on is checked here, once.
+
+use crate::error::{Element, Error, Result};
+use crate::features::{Features, VertexKind};
+use crate::io::{self, MeshData, ReadOptions};
+use crate::rules;
+use crate::topology::Topology;
+use glam::DVec3;
+use std::path::Path;
+
+/// A validated, manifold, consistently oriented triangulation with hard-edge
+/// and corner tags: the control net of a Loop subdivision surface.
+///
+/// Vertices and triangles keep the order they were given in (0-based).
+#[derive(Debug, Clone)]
+pub struct ControlNet {
+    points: Vec<DVec3>,
+    topo: std::sync::Arc<Topology>,
+    features: Features,
+    welded: usize,
+}
+
+impl ControlNet {
+    /// Reads and validates a mesh file (.off .obj .ply .stl .tri).
+    pub fn read(path: impl AsRef<Path>) -> Result<ControlNet> {
+        Self::read_with(path, &ReadOptions::default())
+    }
+
+    /// [`ControlNet::read`] with options (e.g. fan-splitting polygons).
+    /// Validation errors name the file and, for text formats, the line.
+    pub fn read_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<ControlNet> {
+        let path = path.as_ref();
+        let data = io::read_mesh(path, opts)?;
+        let line_of = |err: &Error| match err.element() {
+            Some(Element::Triangle(t)) => data.tri_lines.get(t).copied(),
+            Some(Element::Vertex(v)) => data.vertex_lines.get(v).copied(),
+            None => None,
+        };
+        let welded = data.welded;
+        match Self::from_indices(data.points.clone(), &data.tris) {
+            Ok(mut net) => {
+                net.welded = welded;
+                Ok(net)
+            }
+            Err(err) => {
+                let line = line_of(&err);
+                Err(err.in_file(path, line))
+            }
+        }
+    }
+
+    /// Builds a net from a reader's output.
+    pub fn from_mesh_data(data: MeshData) -> Result<ControlNet> {
+        let mut net = Self::from_indices(data.points, &data.tris)?;
+        net.welded = data.welded;
+        Ok(net)
+    }
+
+    /// Builds a net from coordinates and 0-based triangles.
+    pub fn from_arrays(points: Vec<DVec3>, tris: &[[u32; 3]]) -> Result<ControlNet> {
+        let wide: Vec<[i64; 3]> = tris.iter().map(|t| t.map(i64::from)).collect();
+        Self::from_indices(points, &wide)
+    }
+
+    /// Validates everything DESIGN.md requires of a control net, in order:
+    /// sizes, indices, coordinates, areas, then manifoldness and orientation.
+    pub fn from_indices(points: Vec<DVec3>, tris: &[[i64; 3]]) -> Result<ControlNet> {
+        let nverts = points.len();
+        if nverts == 0 || tris.is_empty() {
+            return Err(Error::EmptyMesh {
+                nverts,
+                ntris: tris.len(),
+            });
+        }
+        if nverts >= u32::MAX as usize {
+            return Err(Error::InvalidArgument(format!(
+                "{nverts} vertices: at most {} are supported",
+                u32::MAX - 1
+            )));
+        }
+        let mut checked = Vec::with_capacity(tris.len());
+        for (t, &verts) in tris.iter().enumerate() {
+            if let Some(&index) = verts.iter().find(|&&i| i < 0 || i as usize >= nverts) {
+                return Err(Error::IndexOutOfRange {
+                    tri: t,
+                    verts,
+                    index,
+                    nverts,
+                });
+            }
+            let c = verts.map(|i| i as u32);
+            if c[0] == c[1] || c[0] == c[2] || c[1] == c[2] {
+                let index = if c[0] == c[1] || c[0] == c[2] {
+                    c[0]
+                } else {
+                    c[1]
+                };
+                return Err(Error::RepeatedIndex {
+                    tri: t,
+                    verts: c,
+                    index,
+                });
+            }
+            checked.push(c);
+        }
+        if let Some((vertex, p)) = points.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+            return Err(Error::NonFiniteCoordinate {
+                vertex,
+                coords: p.to_array(),
+            });
+        }
+        for (t, c) in checked.iter().enumerate() {
+            if is_degenerate(c.map(|i| points[i as usize])) {
+                return Err(Error::ZeroArea { tri: t, verts: *c });
+            }
+        }
+        let topo = Topology::new(nverts, checked)?;
+        let features = Features::new(&topo);
+        Ok(ControlNet {
+            points,
+            topo: std::sync::Arc::new(topo),
+            features,
+            welded: 0,
+        })
+    }
+
+    /// Assembles a net whose topology is known to be valid (refinement output).
+    pub(crate) fn from_parts(points: Vec<DVec3>, topo: Topology, features: Features) -> ControlNet {
+        ControlNet {
+            points,
+            topo: std::sync::Arc::new(topo),
+            features,
+            welded: 0,
+        }
+    }
+
+    /// Vertex positions.
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+    /// Triangles as 0-based vertex triples.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        self.topo.triangles()
+    }
+    /// Connectivity.
+    pub fn topology(&self) -> &Topology {
+        &self.topo
+    }
+    /// Hard-edge and corner tags.
+    pub fn features(&self) -> &Features {
+        &self.features
+    }
+    /// STL only: how many vertices were merged because their coordinates were equal.
+    pub fn welded_vertices(&self) -> usize {
+        self.welded
+    }
+
+    /// Tags the edge (a, b) hard; true if it was not hard before.
+    pub fn tag_edge(&mut self, a: u32, b: u32) -> Result<bool> {
+        self.features.tag_edge(&self.topo, a, b)
+    }
+    /// Tags vertex v as a corner; true if it was not tagged before.
+    pub fn tag_vertex(&mut self, v: u32) -> Result<bool> {
+        self.features.tag_vertex(v)
+    }
+    /// Tags every interior edge whose dihedral angle exceeds `degrees`;
+    /// returns how many edges became hard.
+    pub fn tag_by_angle(&mut self, degrees: f64) -> Result<usize> {
+        self.features
+            .tag_by_angle(&self.topo, &self.points, degrees)
+    }
+    /// Hard edges as (i, j) with i < j, in edge order (first appearance in
+    /// the triangle list), boundary edges included.
+    pub fn hard_edges(&self) -> Vec<[u32; 2]> {
+        let edges = self.topo.edges();
+        (0..edges.len())
+            .filter(|&e| self.features.is_hard_edge(e))
+            .map(|e| edges[e])
+            .collect()
+    }
+    /// The kind of every vertex (smooth, dart, crease, corner).
+    pub fn vertex_kinds(&self) -> Vec<VertexKind> {
+        self.features.vertex_kinds(&self.topo)
+    }
+
+    /// Length of the bounding-box diagonal of the referenced vertices: the
+    /// model size that tolerances are relative to.
+    pub fn bbox_diagonal(&self) -> f64 {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for c in self.triangles() {
+            for &i in c {
+                lo = lo.min(self.points[i as usize]);
+                hi = hi.max(self.points[i as usize]);
+            }
+        }
+        (hi - lo).length()
+    }
+
+    /// Where every control vertex lands on the limit surface (its limit mask).
+    pub fn limit_points(&self) -> Vec<DVec3> {
+        let kinds = self.vertex_kinds();
+        let sums = NeighbourSums::new(&self.topo, &self.features, &self.points);
+        let mut limits: Vec<DVec3> = (0..self.points.len())
+            .map(|v| {
+                let x = self.points[v];
+                match kinds[v] {
+                    VertexKind::Smooth => rules::smooth_limit(x, sums.all[v], sums.valence[v] as usize),
+                    VertexKind::Crease => rules::crease_limit(x, sums.hard[v]),
+                    VertexKind::Corner => rules::corner_limit(x),
+                    VertexKind::Dart => DVec3::NAN, // below: needs the ordered ring
+                }
+            })
+            .collect();
+        let darts: Vec<u32> = (0..kinds.len() as u32)
+            .filter(|&v| kinds[v as usize] == VertexKind::Dart)
+            .collect();
+        if darts.is_empty() {
+            return limits;
+        }
+        // The one neighbour across each dart's hard edge.
+        let mut across = std::collections::HashMap::with_capacity(darts.len());
+        for (e, &[a, b]) in self.topo.edges().iter().enumerate() {
+            if self.features.is_hard_edge(e) {
+                for (v, u) in [(a, b), (b, a)] {
+                    if kinds[v as usize] == VertexKind::Dart {
+                        across.insert(v, u);
+                    }
+                }
+            }
+        }
+        let mut masks = std::collections::HashMap::new();
+        for (&v, ring) in darts.iter().zip(self.topo.rings_of(&darts)) {
+            let n = ring.len();
+            let (own, weights) = masks.entry(n).or_insert_with(|| rules::dart_limit_weights(n));
+            let hard = ring.iter().position(|u| Some(u) == across.get(&v)).unwrap_or(0);
+            limits[v as usize] = *own * self.points[v as usize]
+                + (0..n)
+                    .map(|j| weights[(j + n - hard) % n] * self.points[ring[j] as usize])
+                    .sum::<DVec3>();
+        }
+        limits
+    }
+
+    /// Limit tangents at control vertex v from the tangent masks.
+    pub fn limit_tangents(&self, v: usize) -> Tangents {
+        let p = |i: u32| self.points[i as usize];
+        match self.features.vertex_kind(&self.topo, v) {
+            VertexKind::Smooth | VertexKind::Dart => {
+                let ring = self.topo.ring(v);
+                let (c, s) = rules::smooth_tangent_weights(ring.len());
+                let t1 = ring.iter().zip(&c).map(|(&n, w)| *w * p(n)).sum();
+                let t2 = ring.iter().zip(&s).map(|(&n, w)| *w * p(n)).sum();
+                Tangents::Surface(t1, t2)
+            }
+            VertexKind::Crease => {
+                let hard = self.features.hard_neighbours(&self.topo, v);
+                Tangents::Crease(rules::crease_tangent(p(hard[0]), p(hard[1])))
+            }
+            VertexKind::Corner => Tangents::Corner,
+        }
+    }
+}
+
+/// Limit tangents at a control vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tangents {
+    /// Smooth or dart vertex: two tangents (seed 000 eq. 4); t₁ × t₂ is the
+    /// outward normal direction.
+    Surface(DVec3, DVec3),
+    /// Crease vertex: the tangent of the crease curve, from one crease
+    /// neighbour to the other in ring order.
+    Crease(DVec3),
+    /// A corner has no tangent plane.
+    Corner,
+}
+
+/// Per-vertex sums of neighbour positions gathered in one pass over the
+/// edges: what every vertex and limit mask needs.
+pub(crate) struct NeighbourSums {
+    /// Σ of all neighbours.
+    pub all: Vec<DVec3>,
+    /// Σ of the neighbours across hard edges.
+    pub hard: Vec<DVec3>,
+    /// Number of neighbours.
+    pub valence: Vec<u32>,
+}
+
+impl NeighbourSums {
+    pub fn new(topo: &Topology, features: &Features, points: &[DVec3]) -> NeighbourSums {
+        let n = points.len();
+        let mut s = NeighbourSums {
+            all: vec![DVec3::ZERO; n],
+            hard: vec![DVec3::ZERO; n],
+            valence: vec![0; n],
+        };
+        for (e, &[a, b]) in topo.edges().iter().enumerate() {
+            let (a, b) = (a as usize, b as usize);
+            s.all[a] += points[b];
+            s.all[b] += points[a];
+            s.valence[a] += 1;
+            s.valence[b] += 1;
+            if features.is_hard_edge(e) {
+                s.hard[a] += points[b];
+                s.hard[b] += points[a];
+            }
+        }
+        s
+    }
+}
+
+/// A triangle is degenerate when twice its area is at round-off level
+/// relative to its longest edge squared.
+fn is_degenerate([a, b, c]: [DVec3; 3]) -> bool {
+    let longest = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    let twice_area = (b - a).cross(c - a).length();
+    twice_area <= 1e-14 * longest
+}

@@ -1,0 +1,529 @@
+//! Connectivity of a triangulation: edges, edge–triangle adjacency, ordered
+//! vertex rings and boundary loops. Knows nothing of positions.
+//!
+//! There is no valence limit anywhere: rings are stored in compressed
+//! (CSR) arrays sized by the mesh itself.
+
+use crate::error::{Error, Result};
+use std::sync::OnceLock;
+
+/// Marks a missing triangle (the outside of a boundary edge).
+pub const NONE: u32 = u32::MAX;
+
+/// Edges and adjacency of a manifold, consistently oriented triangulation.
+#[derive(Debug)]
+pub struct Topology {
+    nverts: usize,
+    tris: Vec<[u32; 3]>,
+    /// Edge endpoints, smaller index first. Edges are numbered in order of
+    /// first appearance in the triangle list, so refined vertices (one per
+    /// edge) follow the input's triangle order.
+    edges: Vec<[u32; 2]>,
+    /// The one or two triangles of each edge; the second is [`NONE`] on a boundary.
+    edge_tris: Vec<[u32; 2]>,
+    /// Local edge i of a triangle joins corners i and i+1 (mod 3).
+    tri_edges: Vec<[u32; 3]>,
+    rings: OnceLock<Rings>,
+}
+
+/// Counter-clockwise fans and neighbour rings of every vertex (CSR).
+#[derive(Debug)]
+struct Rings {
+    fan_start: Vec<u32>,
+    fan: Vec<u32>,
+    ring_start: Vec<u32>,
+    ring: Vec<u32>,
+}
+
+impl Topology {
+    /// Builds and validates the topology of `tris` over `nverts` vertices.
+    ///
+    /// Indices must already be in range and distinct within each triangle.
+    /// Fails on non-manifold edges, inconsistently oriented neighbours and
+    /// non-manifold vertices.
+    pub fn new(nverts: usize, tris: Vec<[u32; 3]>) -> Result<Topology> {
+        let (edges, edge_tris, tri_edges) = build_edges(&tris)?;
+        let topo = Topology {
+            nverts,
+            tris,
+            edges,
+            edge_tris,
+            tri_edges,
+            rings: OnceLock::new(),
+        };
+        let rings = topo.build_rings()?;
+        let _ = topo.rings.set(rings);
+        Ok(topo)
+    }
+
+    /// The topology after one step of 1-to-4 triangle splitting, derived
+    /// directly from this one (no searching): old vertex i keeps index i, the
+    /// new vertex on edge e is `nverts + e`; triangle t has children
+    /// `4t .. 4t+4` = (c0 m0 m2), (m0 c1 m1), (m2 m1 c2), (m1 m2 m0) where mᵢ
+    /// is the midpoint of local edge i; edge e has halves `2e` (touching its
+    /// first endpoint) and `2e+1`, and triangle t adds the interior edges
+    /// `2E + 3t + i`.
+    pub fn refined(&self) -> Topology {
+        let nv = self.nverts as u32;
+        let ne = self.edges.len() as u32;
+        let nt = self.tris.len();
+        let mut edges = Vec::with_capacity(2 * ne as usize + 3 * nt);
+        for (e, &[a, b]) in self.edges.iter().enumerate() {
+            let m = nv + e as u32;
+            edges.push([a, m]);
+            edges.push([b, m]);
+        }
+        let mut tris = Vec::with_capacity(4 * nt);
+        let mut tri_edges = Vec::with_capacity(4 * nt);
+        for (t, (c, te)) in self.tris.iter().zip(&self.tri_edges).enumerate() {
+            let m = te.map(|e| nv + e);
+            let half = |i: usize, v: u32| {
+                let e = te[i];
+                if self.edges[e as usize][0] == v {
+                    2 * e
+                } else {
+                    2 * e + 1
+                }
+            };
+            let inner = |i: u32| 2 * ne + 3 * t as u32 + i;
+            // Interior edge i lies opposite corner i, in child i.
+            edges.push(sorted(m[0], m[2]));
+            edges.push(sorted(m[1], m[0]));
+            edges.push(sorted(m[2], m[1]));
+            tris.push([c[0], m[0], m[2]]);
+            tri_edges.push([half(0, c[0]), inner(0), half(2, c[0])]);
+            tris.push([m[0], c[1], m[1]]);
+            tri_edges.push([half(0, c[1]), half(1, c[1]), inner(1)]);
+            tris.push([m[2], m[1], c[2]]);
+            tri_edges.push([inner(2), half(1, c[2]), half(2, c[2])]);
+            tris.push([m[1], m[2], m[0]]);
+            tri_edges.push([inner(2), inner(0), inner(1)]);
+        }
+        let mut edge_tris = vec![[NONE; 2]; edges.len()];
+        for (t, te) in tri_edges.iter().enumerate() {
+            for &e in te {
+                let slot = &mut edge_tris[e as usize];
+                if slot[0] == NONE {
+                    slot[0] = t as u32;
+                } else {
+                    slot[1] = t as u32;
+                }
+            }
+        }
+        Topology {
+            nverts: self.nverts + self.edges.len(),
+            tris,
+            edges,
+            edge_tris,
+            tri_edges,
+            rings: OnceLock::new(),
+        }
+    }
+
+    /// Number of vertices, including unreferenced ones.
+    pub fn num_vertices(&self) -> usize {
+        self.nverts
+    }
+    /// Number of triangles.
+    pub fn num_triangles(&self) -> usize {
+        self.tris.len()
+    }
+    /// Number of edges.
+    pub fn num_edges(&self) -> usize {
+        self.edges.len()
+    }
+    /// Triangles as vertex triples.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.tris
+    }
+    /// Edge endpoints, smaller index first.
+    pub fn edges(&self) -> &[[u32; 2]] {
+        &self.edges
+    }
+    /// The one or two triangles of each edge ([`NONE`] for the missing one).
+    pub fn edge_triangles(&self) -> &[[u32; 2]] {
+        &self.edge_tris
+    }
+    /// The three edges of each triangle; local edge i joins corners i, i+1.
+    pub fn triangle_edges(&self) -> &[[u32; 3]] {
+        &self.tri_edges
+    }
+    /// Whether edge e has only one triangle.
+    pub fn is_boundary_edge(&self, e: usize) -> bool {
+        self.edge_tris[e][1] == NONE
+    }
+    /// The edge joining a and b, if there is one.
+    pub fn find_edge(&self, a: u32, b: u32) -> Option<usize> {
+        let rings = self.rings();
+        let v = a as usize;
+        let fan = &rings.fan[rings.fan_start[v] as usize..rings.fan_start[v + 1] as usize];
+        fan.iter().find_map(|&t| {
+            self.tri_edges[t as usize]
+                .iter()
+                .copied()
+                .find(|&e| self.edges[e as usize] == sorted(a, b))
+                .map(|e| e as usize)
+        })
+    }
+    /// The vertex of triangle t opposite its local edge i.
+    pub fn opposite(&self, t: usize, i: usize) -> u32 {
+        self.tris[t][(i + 2) % 3]
+    }
+
+    /// Triangles around v in counter-clockwise order; on a boundary the fan
+    /// starts at the triangle whose edge (v, next) is a boundary edge.
+    pub fn fan(&self, v: usize) -> &[u32] {
+        let r = self.rings();
+        &r.fan[r.fan_start[v] as usize..r.fan_start[v + 1] as usize]
+    }
+    /// Neighbours of v in counter-clockwise order (the "one-ring"). Interior
+    /// vertices have as many neighbours as triangles; boundary vertices one
+    /// more, and their ring starts and ends on the boundary.
+    pub fn ring(&self, v: usize) -> &[u32] {
+        let r = self.rings();
+        &r.ring[r.ring_start[v] as usize..r.ring_start[v + 1] as usize]
+    }
+    /// Number of edges at v.
+    pub fn valence(&self, v: usize) -> usize {
+        self.ring(v).len()
+    }
+    /// Whether v lies on the boundary.
+    pub fn is_boundary_vertex(&self, v: usize) -> bool {
+        let r = self.rings();
+        let nfan = r.fan_start[v + 1] - r.fan_start[v];
+        let nring = r.ring_start[v + 1] - r.ring_start[v];
+        nring > nfan
+    }
+    /// Whether no triangle uses v.
+    pub fn is_unreferenced(&self, v: usize) -> bool {
+        self.fan(v).is_empty()
+    }
+
+    /// Closed loops of boundary edges, each as its vertices in the order the
+    /// triangles traverse them.
+    pub fn boundary_loops(&self) -> Vec<Vec<u32>> {
+        // On a manifold mesh each boundary vertex has exactly one outgoing
+        // boundary edge, so following it traces every loop once.
+        let mut next = vec![NONE; self.nverts];
+        for (e, et) in self.edge_tris.iter().enumerate() {
+            if et[1] == NONE {
+                let t = et[0] as usize;
+                let i = self.tri_edges[t]
+                    .iter()
+                    .position(|&x| x as usize == e)
+                    .unwrap_or(0);
+                next[self.tris[t][i] as usize] = self.tris[t][(i + 1) % 3];
+            }
+        }
+        let mut seen = vec![false; self.nverts];
+        let mut loops = Vec::new();
+        for start in 0..self.nverts {
+            if next[start] == NONE || seen[start] {
+                continue;
+            }
+            let mut lp = Vec::new();
+            let mut v = start;
+            while !seen[v] {
+                seen[v] = true;
+                lp.push(v as u32);
+                v = next[v] as usize;
+            }
+            loops.push(lp);
+        }
+        loops
+    }
+
+    /// V − E + F over the referenced vertices.
+    pub fn euler_characteristic(&self) -> i64 {
+        let used = (0..self.nverts)
+            .filter(|&v| !self.is_unreferenced(v))
+            .count();
+        used as i64 - self.edges.len() as i64 + self.tris.len() as i64
+    }
+
+    /// The counter-clockwise rings of a few vertices, found in one pass over
+    /// the triangles without building every vertex's ring (for refined
+    /// levels, where only darts need one).
+    pub fn rings_of(&self, vertices: &[u32]) -> Vec<Vec<u32>> {
+        if let Some(r) = self.rings.get() {
+            return vertices
+                .iter()
+                .map(|&v| r.ring[r.ring_start[v as usize] as usize..r.ring_start[v as usize + 1] as usize].to_vec())
+                .collect();
+        }
+        let mut slot = std::collections::HashMap::with_capacity(vertices.len());
+        for (k, &v) in vertices.iter().enumerate() {
+            slot.insert(v, k);
+        }
+        let mut around: Vec<Vec<(u32, u32, u32)>> = vec![Vec::new(); vertices.len()];
+        for (t, c) in self.tris.iter().enumerate() {
+            for i in 0..3 {
+                if let Some(&k) = slot.get(&c[i]) {
+                    around[k].push((c[(i + 1) % 3], c[(i + 2) % 3], t as u32));
+                }
+            }
+        }
+        vertices
+            .iter()
+            .zip(&mut around)
+            .map(|(&v, a)| {
+                let (mut fan, mut ring) = (Vec::new(), Vec::new());
+                walk_fan(v, a, &mut fan, &mut ring)
+                    .expect("a refined manifold triangulation has manifold vertices");
+                ring
+            })
+            .collect()
+    }
+
+    fn rings(&self) -> &Rings {
+        self.rings.get_or_init(|| {
+            self.build_rings()
+                .expect("a refined manifold triangulation has manifold vertices")
+        })
+    }
+
+    /// Orders the triangles around every vertex into one fan; a vertex whose
+    /// triangles form more than one fan is non-manifold.
+    fn build_rings(&self) -> Result<Rings> {
+        let nv = self.nverts;
+        let mut fan_start = vec![0u32; nv + 1];
+        for c in &self.tris {
+            for &v in c {
+                fan_start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            fan_start[v + 1] += fan_start[v];
+        }
+        // Incident (next, prev, tri) per vertex, in triangle order.
+        let mut incident = vec![(0u32, 0u32, 0u32); self.tris.len() * 3];
+        let mut fill = fan_start.clone();
+        for (t, c) in self.tris.iter().enumerate() {
+            for i in 0..3 {
+                let v = c[i] as usize;
+                incident[fill[v] as usize] = (c[(i + 1) % 3], c[(i + 2) % 3], t as u32);
+                fill[v] += 1;
+            }
+        }
+        let mut fan = Vec::with_capacity(incident.len());
+        let mut ring_start = Vec::with_capacity(nv + 1);
+        let mut ring = Vec::with_capacity(incident.len() + nv / 8);
+        ring_start.push(0u32);
+        let mut around = Vec::new();
+        for v in 0..nv {
+            around.clear();
+            around.extend_from_slice(&incident[fan_start[v] as usize..fan_start[v + 1] as usize]);
+            walk_fan(v as u32, &mut around, &mut fan, &mut ring)?;
+            ring_start.push(ring.len() as u32);
+        }
+        Ok(Rings {
+            fan_start,
+            fan,
+            ring_start,
+            ring,
+        })
+    }
+}
+
+/// Orders one vertex's incident (next, prev, triangle) triples into a
+/// counter-clockwise fan, appending its triangles to `fan` and its
+/// neighbours to `ring`. Fails when they form more than one fan.
+fn walk_fan(v: u32, around: &mut [(u32, u32, u32)], fan: &mut Vec<u32>, ring: &mut Vec<u32>) -> Result<()> {
+    let n = around.len();
+    if n == 0 {
+        return Ok(());
+    }
+    // Sorted by `next`, the triangle following (next, prev) counter-clockwise
+    // is the one whose `next` is our `prev`.
+    around.sort_unstable();
+    let mut prevs: Vec<u32> = around.iter().map(|a| a.1).collect();
+    prevs.sort_unstable();
+    let is_prev = |x: u32| prevs.binary_search(&x).is_ok();
+    // A boundary fan starts where `next` is nobody's `prev`.
+    let start = (0..n).find(|&k| !is_prev(around[k].0)).unwrap_or(0);
+    let boundary = !is_prev(around[start].0);
+    let find = |x: u32| around.binary_search_by_key(&x, |a| a.0).ok();
+    let mut k = start;
+    let mut walked = 0;
+    loop {
+        fan.push(around[k].2);
+        ring.push(around[k].0);
+        walked += 1;
+        match find(around[k].1) {
+            Some(j) if j != start && walked < n => k = j,
+            _ => break,
+        }
+    }
+    if boundary {
+        ring.push(around[k].1);
+    }
+    if walked != n {
+        return Err(Error::NonManifoldVertex {
+            vertex: v,
+            ntris: n,
+            fans: count_fans(around),
+        });
+    }
+    Ok(())
+}
+
+fn sorted(a: u32, b: u32) -> [u32; 2] {
+    if a < b {
+        [a, b]
+    } else {
+        [b, a]
+    }
+}
+
+/// Number of separate fans among a vertex's incident (next, prev, tri) triples.
+fn count_fans(around: &[(u32, u32, u32)]) -> usize {
+    // Union-find over triangles joined by a shared spoke (prev of one = next of other).
+    let n = around.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for i in 0..n {
+        for j in 0..n {
+            if around[i].1 == around[j].0 {
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                parent[a] = b;
+            }
+        }
+    }
+    (0..n).filter(|&i| root(&mut parent, i) == i).count()
+}
+
+type EdgeArrays = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>);
+
+/// Finds the edges by sorting the triangles' half-edges on their endpoints,
+/// and checks that each edge has one or two triangles traversing it in
+/// opposite directions.
+fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
+    let nslots = tris.len() * 3;
+    let key = |slot: usize| {
+        let c = tris[slot / 3];
+        let [a, b] = sorted(c[slot % 3], c[(slot + 1) % 3]);
+        (a as u64) << 32 | b as u64
+    };
+    let mut order: Vec<(u64, u32)> = (0..nslots).map(|s| (key(s), s as u32)).collect();
+    order.sort_unstable();
+    // Group runs of equal keys; give each group the id of its first appearance.
+    let mut group_of_slot = vec![0u32; nslots];
+    let mut groups: Vec<(usize, usize)> = Vec::new(); // (start, len) in `order`
+    let mut i = 0;
+    while i < order.len() {
+        let mut j = i + 1;
+        while j < order.len() && order[j].0 == order[i].0 {
+            j += 1;
+        }
+        let run = &order[i..j];
+        let tri_of = |s: u32| s / 3;
+        let dir = |s: u32| {
+            let c = tris[s as usize / 3];
+            let k = s as usize % 3;
+            (c[k], c[(k + 1) % 3])
+        };
+        if run.len() > 2 {
+            let (a, b) = dir(run[0].1);
+            let [a, b] = sorted(a, b);
+            return Err(Error::NonManifoldEdge {
+                a,
+                b,
+                tris: run.iter().map(|r| tri_of(r.1)).collect(),
+            });
+        }
+        if run.len() == 2 && dir(run[0].1) == dir(run[1].1) {
+            let (a, b) = dir(run[0].1);
+            return Err(Error::InconsistentOrientation {
+                a,
+                b,
+                tris: [tri_of(run[0].1), tri_of(run[1].1)],
+            });
+        }
+        for r in run {
+            group_of_slot[r.1 as usize] = groups.len() as u32;
+        }
+        groups.push((i, j - i));
+        i = j;
+    }
+    let mut id_of_group = vec![NONE; groups.len()];
+    let mut edges = Vec::with_capacity(groups.len());
+    let mut edge_tris = Vec::with_capacity(groups.len());
+    let mut tri_edges = vec![[0u32; 3]; tris.len()];
+    for slot in 0..nslots {
+        let g = group_of_slot[slot] as usize;
+        if id_of_group[g] == NONE {
+            id_of_group[g] = edges.len() as u32;
+            let (start, len) = groups[g];
+            let k = order[start].0;
+            edges.push([(k >> 32) as u32, k as u32]);
+            let t0 = order[start].1 / 3;
+            let t1 = if len == 2 {
+                order[start + 1].1 / 3
+            } else {
+                NONE
+            };
+            edge_tris.push([t0.min(t1), if len == 2 { t0.max(t1) } else { NONE }]);
+        }
+        tri_edges[slot / 3][slot % 3] = id_of_group[g];
+    }
+    Ok((edges, edge_tris, tri_edges))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Vec<[u32; 3]> {
+        vec![[0, 1, 2], [0, 2, 3]]
+    }
+
+    #[test]
+    fn square_edges_rings_loops() {
+        let t = Topology::new(4, square()).unwrap();
+        assert_eq!(t.num_edges(), 5);
+        assert_eq!(t.edges()[0], [0, 1]);
+        assert_eq!(t.euler_characteristic(), 1);
+        assert_eq!(t.boundary_loops(), vec![vec![0, 1, 2, 3]]);
+        assert_eq!(t.ring(0), &[1, 2, 3]);
+        assert_eq!(t.fan(0), &[0, 1]);
+        assert!(t.is_boundary_vertex(0));
+        assert_eq!(t.find_edge(2, 0), Some(2));
+        assert_eq!(t.find_edge(1, 3), None);
+    }
+
+    #[test]
+    fn tetrahedron_is_closed() {
+        let t = Topology::new(4, vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]).unwrap();
+        assert_eq!(t.euler_characteristic(), 2);
+        assert!(t.boundary_loops().is_empty());
+        for v in 0..4 {
+            assert_eq!(t.valence(v), 3);
+            assert!(!t.is_boundary_vertex(v));
+        }
+    }
+
+    #[test]
+    fn refined_square_is_consistent() {
+        let t = Topology::new(4, square()).unwrap().refined();
+        let again = Topology::new(t.num_vertices(), t.triangles().to_vec()).unwrap();
+        assert_eq!(t.num_edges(), again.num_edges());
+        assert_eq!(t.num_triangles(), 8);
+        assert_eq!(again.euler_characteristic(), 1);
+        for (e, &[a, b]) in t.edges().iter().enumerate() {
+            assert_eq!(
+                again.find_edge(a, b).map(|f| again.edges()[f]),
+                Some([a, b])
+            );
+            for &tri in t.edge_triangles()[e].iter().filter(|&&x| x != NONE) {
+                assert!(t.triangles()[tri as usize].contains(&a));
+                assert!(t.triangles()[tri as usize].contains(&b));
+            }
+        }
+    }
+}
