@@ -23,7 +23,11 @@ pub fn run(args: Args) -> Result<(), Error> {
         topo.num_edges()
     );
     if !unreferenced.is_empty() {
-        let shown: Vec<String> = unreferenced.iter().take(10).map(|v| v.to_string()).collect();
+        let shown: Vec<String> = unreferenced
+            .iter()
+            .take(10)
+            .map(|v| v.to_string())
+            .collect();
         let more = if unreferenced.len() > 10 { " ..." } else { "" };
         println!(
             "unreferenced vertices (kept, ignored): {} [{}{more}]",
@@ -32,7 +36,10 @@ pub fn run(args: Args) -> Result<(), Error> {
         );
     }
     if net.welded_vertices() > 0 {
-        println!("welded STL vertices (exactly equal coordinates): {}", net.welded_vertices());
+        println!(
+            "welded STL vertices (exactly equal coordinates): {}",
+            net.welded_vertices()
+        );
     }
 
     let mut valences = BTreeMap::new();
@@ -55,12 +62,17 @@ pub fn run(args: Args) -> Result<(), Error> {
     );
     let chi = topo.euler_characteristic();
     if loops.is_empty() && chi % 2 == 0 {
-        println!("Euler characteristic: {chi} (closed, genus {})", (2 - chi) / 2);
+        println!(
+            "Euler characteristic: {chi} (closed, genus {})",
+            (2 - chi) / 2
+        );
     } else {
         println!("Euler characteristic: {chi}");
     }
 
-    let boundary_edges = (0..topo.num_edges()).filter(|&e| topo.is_boundary_edge(e)).count();
+    let boundary_edges = (0..topo.num_edges())
+        .filter(|&e| topo.is_boundary_edge(e))
+        .count();
     let hard = net.features().num_hard_edges();
     println!(
         "hard edges: {hard} ({boundary_edges} boundary, {} tagged)",

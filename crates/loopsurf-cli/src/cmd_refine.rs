@@ -39,7 +39,11 @@ pub fn run(args: Args) -> Result<(), Error> {
     if is_vtu {
         // Where each vertex sits on the control net, for ParaView.
         let param = |f: fn(&loopsurf::SurfacePoint) -> f64| -> Vec<f64> {
-            refined.origins.iter().map(|o| o.as_ref().map_or(f64::NAN, f)).collect()
+            refined
+                .origins
+                .iter()
+                .map(|o| o.as_ref().map_or(f64::NAN, f))
+                .collect()
         };
         let tri: Vec<i32> = refined
             .origins

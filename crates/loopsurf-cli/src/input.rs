@@ -66,7 +66,8 @@ impl Input {
                 let [a, b] = fields[..] else {
                     return Err(located(path, line, "expected two vertex indices `i j`"));
                 };
-                net.tag_edge(a, b).map_err(|e| e.in_file(path, Some(line)))?;
+                net.tag_edge(a, b)
+                    .map_err(|e| e.in_file(path, Some(line)))?;
             }
         }
         if let Some(path) = &self.hard_vertices {
@@ -105,7 +106,13 @@ fn read_index_lines(path: &Path) -> Result<Vec<(usize, Vec<u32>)>, Error> {
             .split_whitespace()
             .map(|f| f.parse::<u32>())
             .collect::<Result<Vec<_>, _>>()
-            .map_err(|_| located(path, i + 1, &format!("'{content}' is not a list of vertex indices")))?;
+            .map_err(|_| {
+                located(
+                    path,
+                    i + 1,
+                    &format!("'{content}' is not a list of vertex indices"),
+                )
+            })?;
         out.push((i + 1, fields));
     }
     Ok(out)

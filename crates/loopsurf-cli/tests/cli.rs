@@ -34,15 +34,29 @@ fn info_on_the_viking_finds_two_hard_circles() {
     let out = loopsurf(&["info", "--example", "viking", "--hard-angle", "30"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let s = text(&out.stdout);
-    assert!(s.contains("Euler characteristic: 2 (closed, genus 0)"), "{s}");
+    assert!(
+        s.contains("Euler characteristic: 2 (closed, genus 0)"),
+        "{s}"
+    );
     assert!(s.contains("boundary loops: 0"), "{s}");
     assert!(s.contains("limit deviation"), "{s}");
     // Two circles of crease vertices, no corners.
     let hard = s.lines().find(|l| l.starts_with("hard edges:")).unwrap();
     let kinds = s.lines().find(|l| l.starts_with("vertex kinds:")).unwrap();
-    assert!(kinds.contains("corner 0") && kinds.contains("dart 0"), "{kinds}");
+    assert!(
+        kinds.contains("corner 0") && kinds.contains("dart 0"),
+        "{kinds}"
+    );
     let n: usize = hard.split_whitespace().nth(2).unwrap().parse().unwrap();
-    let crease: usize = kinds.split("crease ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    let crease: usize = kinds
+        .split("crease ")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
     assert_eq!(n, crease, "closed circles have as many edges as vertices");
     assert!(n > 0);
 }
@@ -50,10 +64,19 @@ fn info_on_the_viking_finds_two_hard_circles() {
 #[test]
 fn hard_edges_lists_boundary_and_tagged_edges() {
     let mesh = scratch("square.off");
-    std::fs::write(&mesh, "OFF\n5 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 0.2\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n").unwrap();
+    std::fs::write(
+        &mesh,
+        "OFF\n5 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 0.2\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n",
+    )
+    .unwrap();
     let tags = scratch("tags.txt");
     std::fs::write(&tags, "# the diagonal spoke\n4 0\n").unwrap();
-    let out = loopsurf(&["hard-edges", mesh.to_str().unwrap(), "--hard-edges", tags.to_str().unwrap()]);
+    let out = loopsurf(&[
+        "hard-edges",
+        mesh.to_str().unwrap(),
+        "--hard-edges",
+        tags.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let mut lines: Vec<String> = text(&out.stdout).lines().map(String::from).collect();
     lines.sort();
@@ -63,13 +86,30 @@ fn hard_edges_lists_boundary_and_tagged_edges() {
 #[test]
 fn refine_writes_the_requested_format() {
     let out_path = scratch("torus2.obj");
-    let out = loopsurf(&["refine", "--example", "torus", "--levels", "2", "--limit", "-o", out_path.to_str().unwrap()]);
+    let out = loopsurf(&[
+        "refine",
+        "--example",
+        "torus",
+        "--levels",
+        "2",
+        "--limit",
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let net = loopsurf::ControlNet::read(&out_path).unwrap();
     let ex = loopsurf::examples::torus();
     assert_eq!(net.triangles().len(), 16 * ex.tris.len());
     let vtu = scratch("torus1.vtu");
-    let out = loopsurf(&["refine", "--example", "torus", "-k", "1", "-o", vtu.to_str().unwrap()]);
+    let out = loopsurf(&[
+        "refine",
+        "--example",
+        "torus",
+        "-k",
+        "1",
+        "-o",
+        vtu.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let xml = std::fs::read_to_string(&vtu).unwrap();
     assert!(xml.contains("UnstructuredGrid") && xml.contains("Name=\"tri\""));
@@ -80,22 +120,43 @@ fn bad_input_exits_2_with_one_line() {
     let bad = scratch("bad.off");
     std::fs::write(&bad, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n").unwrap();
     assert_clean_failure(&loopsurf(&["info", bad.to_str().unwrap()]), "bad.off:6");
-    assert_clean_failure(&loopsurf(&["info", "/nonexistent/x.off"]), "/nonexistent/x.off");
+    assert_clean_failure(
+        &loopsurf(&["info", "/nonexistent/x.off"]),
+        "/nonexistent/x.off",
+    );
     assert_clean_failure(&loopsurf(&["info", "mesh.unknown"]), "mesh.unknown");
     assert_clean_failure(&loopsurf(&["info", "--example", "nope"]), "unknown example");
-    assert_clean_failure(&loopsurf(&["info", "--example", "cube", "--hard-angle", "-5"]), "hard angle");
-    assert_clean_failure(&loopsurf(&["refine", "--example", "cube", "-k", "99", "-o", "x.obj"]), "levels");
+    assert_clean_failure(
+        &loopsurf(&["info", "--example", "cube", "--hard-angle", "-5"]),
+        "hard angle",
+    );
+    assert_clean_failure(
+        &loopsurf(&["refine", "--example", "cube", "-k", "99", "-o", "x.obj"]),
+        "levels",
+    );
     assert_clean_failure(&loopsurf(&["info"]), "MESH");
     assert_clean_failure(&loopsurf(&["frobnicate"]), "frobnicate");
     let tags = scratch("tags_bad.txt");
     std::fs::write(&tags, "0 1\n1 two\n").unwrap();
     assert_clean_failure(
-        &loopsurf(&["info", "--example", "cube", "--hard-edges", tags.to_str().unwrap()]),
+        &loopsurf(&[
+            "info",
+            "--example",
+            "cube",
+            "--hard-edges",
+            tags.to_str().unwrap(),
+        ]),
         "tags_bad.txt",
     );
     std::fs::write(&tags, "0 999999\n").unwrap();
     assert_clean_failure(
-        &loopsurf(&["info", "--example", "cube", "--hard-edges", tags.to_str().unwrap()]),
+        &loopsurf(&[
+            "info",
+            "--example",
+            "cube",
+            "--hard-edges",
+            tags.to_str().unwrap(),
+        ]),
         "tags_bad.txt:1",
     );
 }

@@ -205,7 +205,9 @@ impl ControlNet {
             .map(|v| {
                 let x = self.points[v];
                 match kinds[v] {
-                    VertexKind::Smooth => rules::smooth_limit(x, sums.all[v], sums.valence[v] as usize),
+                    VertexKind::Smooth => {
+                        rules::smooth_limit(x, sums.all[v], sums.valence[v] as usize)
+                    }
                     VertexKind::Crease => rules::crease_limit(x, sums.hard[v]),
                     VertexKind::Corner => rules::corner_limit(x),
                     VertexKind::Dart => DVec3::NAN, // below: needs the ordered ring
@@ -232,8 +234,13 @@ impl ControlNet {
         let mut masks = std::collections::HashMap::new();
         for (&v, ring) in darts.iter().zip(self.topo.rings_of(&darts)) {
             let n = ring.len();
-            let (own, weights) = masks.entry(n).or_insert_with(|| rules::dart_limit_weights(n));
-            let hard = ring.iter().position(|u| Some(u) == across.get(&v)).unwrap_or(0);
+            let (own, weights) = masks
+                .entry(n)
+                .or_insert_with(|| rules::dart_limit_weights(n));
+            let hard = ring
+                .iter()
+                .position(|u| Some(u) == across.get(&v))
+                .unwrap_or(0);
             limits[v as usize] = *own * self.points[v as usize]
                 + (0..n)
                     .map(|j| weights[(j + n - hard) % n] * self.points[ring[j] as usize])

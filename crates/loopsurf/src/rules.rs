@@ -272,8 +272,13 @@ mod tests {
                     }
                 })
                 .collect();
-            let apply = |v: DVec3, nb: &[DVec3]| a * v + nb.iter().zip(&ring).map(|(p, w)| *p * *w).sum::<DVec3>();
-            assert!((apply(v, nb) - apply(v1, &nb1)).length() < 1e-13, "valence {n}");
+            let apply = |v: DVec3, nb: &[DVec3]| {
+                a * v + nb.iter().zip(&ring).map(|(p, w)| *p * *w).sum::<DVec3>()
+            };
+            assert!(
+                (apply(v, nb) - apply(v1, &nb1)).length() < 1e-13,
+                "valence {n}"
+            );
         }
     }
 }

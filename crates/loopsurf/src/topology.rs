@@ -248,7 +248,10 @@ impl Topology {
         if let Some(r) = self.rings.get() {
             return vertices
                 .iter()
-                .map(|&v| r.ring[r.ring_start[v as usize] as usize..r.ring_start[v as usize + 1] as usize].to_vec())
+                .map(|&v| {
+                    r.ring[r.ring_start[v as usize] as usize..r.ring_start[v as usize + 1] as usize]
+                        .to_vec()
+                })
                 .collect();
         }
         let mut slot = std::collections::HashMap::with_capacity(vertices.len());
@@ -328,7 +331,12 @@ impl Topology {
 /// Orders one vertex's incident (next, prev, triangle) triples into a
 /// counter-clockwise fan, appending its triangles to `fan` and its
 /// neighbours to `ring`. Fails when they form more than one fan.
-fn walk_fan(v: u32, around: &mut [(u32, u32, u32)], fan: &mut Vec<u32>, ring: &mut Vec<u32>) -> Result<()> {
+fn walk_fan(
+    v: u32,
+    around: &mut [(u32, u32, u32)],
+    fan: &mut Vec<u32>,
+    ring: &mut Vec<u32>,
+) -> Result<()> {
     let n = around.len();
     if n == 0 {
         return Ok(());

@@ -206,7 +206,10 @@ fn regular_triangles_of_real_meshes_match_the_box_spline() {
         let net = ControlNet::read(&path).unwrap();
         let checked = assert_matches_box_spline(&net, 2);
         eprintln!("{name}: {checked} refined vertices in regular triangles");
-        assert!(checked > 500, "{name}: too few regular triangles ({checked})");
+        assert!(
+            checked > 500,
+            "{name}: too few regular triangles ({checked})"
+        );
     }
 }
 

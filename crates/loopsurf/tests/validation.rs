@@ -161,7 +161,13 @@ fn malformed_file() {
 fn polygon_needs_triangulate() {
     let quad = SQUARE.replace("4 2 0", "4 1 0") + "4 0 1 2 3\n";
     let (err, msg) = off_error("quad.off", &quad);
-    assert!(matches!(err.root(), Error::Polygon { face: 0, corners: 4 }));
+    assert!(matches!(
+        err.root(),
+        Error::Polygon {
+            face: 0,
+            corners: 4
+        }
+    ));
     assert!(msg.contains(":7"), "{msg}");
     let path = write("quad_ok.off", &quad);
     let opts = loopsurf::io::ReadOptions { triangulate: true };
