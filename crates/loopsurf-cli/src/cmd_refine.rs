@@ -38,19 +38,13 @@ pub fn run(args: Args) -> Result<(), Error> {
         .is_some_and(|e| e.eq_ignore_ascii_case("vtu"));
     if is_vtu {
         // Where each vertex sits on the control net, for ParaView.
-        let param = |f: fn(&loopsurf::SurfacePoint) -> f64| -> Vec<f64> {
-            refined
-                .origins
-                .iter()
-                .map(|o| o.as_ref().map_or(f64::NAN, f))
-                .collect()
-        };
-        let tri: Vec<i32> = refined
-            .origins
+        let origins: Vec<_> = refined.origins().collect();
+        let tri: Vec<i32> = origins
             .iter()
             .map(|o| o.map_or(-1, |o| o.tri as i32))
             .collect();
-        let (v, w) = (param(|o| o.v), param(|o| o.w));
+        let v: Vec<f64> = origins.iter().map(|o| o.map_or(-1.0, |o| o.v)).collect();
+        let w: Vec<f64> = origins.iter().map(|o| o.map_or(-1.0, |o| o.w)).collect();
         let shift = 2 * args.levels;
         let control: Vec<i32> = (0..tris.len()).map(|t| (t >> shift) as i32).collect();
         io::write_vtu(

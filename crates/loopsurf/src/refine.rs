@@ -11,7 +11,7 @@ use crate::features::VertexKind;
 use crate::net::{ControlNet, NeighbourSums};
 use crate::rules;
 use crate::topology::NONE;
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// A point of the surface named by its control triangle and barycentric
@@ -30,11 +30,19 @@ pub struct Refinement {
     /// Vertex i of the input keeps index i; triangle t of level l has the
     /// children 4t … 4t+3 on level l + 1.
     pub net: ControlNet,
-    /// For every refined vertex, where it sits on the control net; `None`
-    /// for vertices no triangle uses.
-    pub origins: Vec<Option<SurfacePoint>>,
     /// Number of levels applied.
     pub levels: u32,
+    /// Where each vertex sits, as integer multiples of 2^-levels: 8 bytes a
+    /// vertex instead of 24, which matters at millions of vertices.
+    origins: Vec<Dyadic>,
+}
+
+/// A control triangle and (v, w) = (i, j) / 2^levels.
+#[derive(Debug, Clone, Copy)]
+struct Dyadic {
+    tri: u32,
+    i: u16,
+    j: u16,
 }
 
 impl Refinement {
@@ -42,10 +50,27 @@ impl Refinement {
     pub fn limit_points(&self) -> Vec<DVec3> {
         self.net.limit_points()
     }
+
+    /// Where refined vertex `vertex` sits on the control net: its control
+    /// triangle and dyadic (v, w). `None` for vertices no triangle uses.
+    pub fn origin(&self, vertex: usize) -> Option<SurfacePoint> {
+        let d = self.origins[vertex];
+        let scale = (1u32 << self.levels) as f64;
+        (d.tri != NONE).then(|| SurfacePoint {
+            tri: d.tri,
+            v: d.i as f64 / scale,
+            w: d.j as f64 / scale,
+        })
+    }
+
+    /// [`Refinement::origin`] of every refined vertex, in vertex order.
+    pub fn origins(&self) -> impl ExactSizeIterator<Item = Option<SurfacePoint>> + '_ {
+        (0..self.origins.len()).map(|v| self.origin(v))
+    }
 }
 
 /// The most levels [`refine_uniform`] accepts; each level multiplies the
-/// triangle count by four.
+/// triangle count by four, and 2^12 keeps dyadic parameters in 16 bits.
 pub const MAX_LEVELS: u32 = 12;
 
 /// Refines the net uniformly `levels` times.
@@ -66,59 +91,82 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
         )));
     }
     let topo = net.topology();
-    let mut origins: Vec<Option<SurfacePoint>> = (0..topo.num_vertices())
-        .map(|v| {
-            let &t = topo.fan(v).first()?;
-            let corner = topo.triangles()[t as usize]
-                .iter()
-                .position(|&c| c as usize == v)?;
-            let p = CORNERS[corner];
-            Some(SurfacePoint {
-                tri: t,
-                v: p.x,
-                w: p.y,
-            })
+    let full = 1u16 << levels;
+    let mut origins: Vec<Dyadic> = (0..topo.num_vertices())
+        .map(|v| match topo.fan(v).first() {
+            None => Dyadic {
+                tri: NONE,
+                i: 0,
+                j: 0,
+            },
+            Some(&t) => {
+                let [i, j] = corners(full)[corner_of(topo.triangles()[t as usize], v)];
+                Dyadic { tri: t, i, j }
+            }
         })
         .collect();
-    let mut params: Vec<[DVec2; 3]> = vec![CORNERS; topo.num_triangles()];
     let mut current = net.clone();
     for level in 0..levels {
         let topo = current.topology();
-        // New vertices on edges: their parameter from the edge's first triangle.
-        let shift = 2 * level;
-        origins.extend(topo.edge_triangles().iter().enumerate().map(|(e, et)| {
-            let t = et[0] as usize;
-            let i = local_edge(topo.triangle_edges()[t], e);
-            let p = 0.5 * (params[t][i] + params[t][(i + 1) % 3]);
-            Some(SurfacePoint {
-                tri: (t >> shift) as u32,
-                v: p.x,
-                w: p.y,
-            })
-        }));
-        if level + 1 < levels {
-            params = params.iter().flat_map(|p| split_params(*p)).collect();
-        }
+        // New vertices on edges: the midpoint of the edge in its first triangle.
+        let first = origins.len();
+        origins.resize(
+            first + topo.num_edges(),
+            Dyadic {
+                tri: NONE,
+                i: 0,
+                j: 0,
+            },
+        );
+        origins[first..]
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(e, origin)| {
+                let t = topo.edge_triangles()[e][0] as usize;
+                let k = local_edge(topo.triangle_edges()[t], e);
+                let p = corner_params(t, level, full);
+                let (a, b) = (p[k], p[(k + 1) % 3]);
+                *origin = Dyadic {
+                    tri: (t >> (2 * level)) as u32,
+                    i: (a[0] + b[0]) / 2,
+                    j: (a[1] + b[1]) / 2,
+                };
+            });
         current = subdivide(&current);
     }
     Ok(Refinement {
         net: current,
-        origins,
         levels,
+        origins,
     })
 }
 
-/// (v, w) of a triangle's corners c0, c1, c2.
-const CORNERS: [DVec2; 3] = [
-    DVec2::new(0.0, 0.0),
-    DVec2::new(1.0, 0.0),
-    DVec2::new(0.0, 1.0),
-];
+/// The corners (v, w) = (0, 0), (1, 0), (0, 1) in units of 1/`full`.
+fn corners(full: u16) -> [[u16; 2]; 3] {
+    [[0, 0], [full, 0], [0, full]]
+}
 
-/// Corner parameters of the four children, in [`crate::Topology::refined`]'s order.
-fn split_params([p0, p1, p2]: [DVec2; 3]) -> [[DVec2; 3]; 4] {
-    let (m0, m1, m2) = (0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0));
-    [[p0, m0, m2], [m0, p1, m1], [m2, m1, p2], [m1, m2, m0]]
+/// Corner parameters of triangle t of the given level inside its control
+/// triangle, read off the base-4 digits of t (child c of a triangle is 4t + c,
+/// in [`crate::Topology::refined`]'s order). Exact: all are dyadic.
+fn corner_params(t: usize, level: u32, full: u16) -> [[u16; 2]; 3] {
+    let mid = |a: [u16; 2], b: [u16; 2]| [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+    let mut p = corners(full);
+    for l in (0..level).rev() {
+        let [p0, p1, p2] = p;
+        let (m0, m1, m2) = (mid(p0, p1), mid(p1, p2), mid(p2, p0));
+        p = match (t >> (2 * l)) & 3 {
+            0 => [p0, m0, m2],
+            1 => [m0, p1, m1],
+            2 => [m2, m1, p2],
+            _ => [m1, m2, m0],
+        };
+    }
+    p
+}
+
+fn corner_of(c: [u32; 3], v: usize) -> usize {
+    c.iter().position(|&x| x as usize == v).unwrap_or(0)
 }
 
 fn local_edge(tri_edges: [u32; 3], e: usize) -> usize {
@@ -132,32 +180,36 @@ fn subdivide(net: &ControlNet) -> ControlNet {
     let points = net.points();
     let kinds = features.vertex_kinds(topo);
     let sums = NeighbourSums::new(topo, features, points);
-    let vertex_points = (0..points.len()).into_par_iter().map(|v| {
-        let x = points[v];
-        match kinds[v] {
-            VertexKind::Smooth | VertexKind::Dart => {
-                rules::smooth_vertex(x, sums.all[v], sums.valence[v] as usize)
-            }
-            VertexKind::Crease => rules::crease_vertex(x, sums.hard[v]),
-            VertexKind::Corner => rules::corner_vertex(x),
-        }
-    });
     let tris = topo.triangles();
-    let edge_points = topo.edges().par_iter().enumerate().map(|(e, &[a, b])| {
+    let mut new_points = vec![DVec3::ZERO; points.len() + topo.num_edges()];
+    let (vertex_points, edge_points) = new_points.split_at_mut(points.len());
+    vertex_points
+        .par_iter_mut()
+        .enumerate()
+        .for_each(|(v, out)| {
+            let x = points[v];
+            *out = match kinds[v] {
+                VertexKind::Smooth | VertexKind::Dart => {
+                    rules::smooth_vertex(x, sums.all[v], sums.valence[v] as usize)
+                }
+                VertexKind::Crease => rules::crease_vertex(x, sums.hard[v]),
+                VertexKind::Corner => rules::corner_vertex(x),
+            }
+        });
+    edge_points.par_iter_mut().enumerate().for_each(|(e, out)| {
+        let [a, b] = topo.edges()[e];
         let (pa, pb) = (points[a as usize], points[b as usize]);
         let [t0, t1] = topo.edge_triangles()[e];
-        if features.is_hard_edge(e) || t1 == NONE {
-            return rules::hard_edge(pa, pb);
-        }
-        let opposite = |t: u32| {
-            let i = local_edge(topo.triangle_edges()[t as usize], e);
-            points[tris[t as usize][(i + 2) % 3] as usize]
+        *out = if features.is_hard_edge(e) || t1 == NONE {
+            rules::hard_edge(pa, pb)
+        } else {
+            let opposite = |t: u32| {
+                let i = local_edge(topo.triangle_edges()[t as usize], e);
+                points[tris[t as usize][(i + 2) % 3] as usize]
+            };
+            rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
         };
-        rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
     });
-    let mut new_points = Vec::with_capacity(points.len() + topo.num_edges());
-    new_points.par_extend(vertex_points);
-    new_points.par_extend(edge_points);
     ControlNet::from_parts(new_points, topo.refined(), features.refined(topo))
 }
 

@@ -18,9 +18,19 @@ use std::f64::consts::PI;
 /// Each of the n neighbours gets β; the vertex itself keeps 1 − nβ.
 /// β(6) = 1/16, which makes regular regions quartic box splines.
 pub fn loop_beta(valence: usize) -> f64 {
-    let n = valence as f64;
-    let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / n).cos();
-    (5.0 / 8.0 - c * c) / n
+    // Refinement asks for β once per vertex per level: a table for the
+    // common valences keeps cos() off that path.
+    const TABLED: usize = 64;
+    static TABLE: std::sync::OnceLock<[f64; TABLED]> = std::sync::OnceLock::new();
+    let formula = |valence: usize| {
+        let n = valence as f64;
+        let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / n).cos();
+        (5.0 / 8.0 - c * c) / n
+    };
+    match valence {
+        n if n < TABLED => TABLE.get_or_init(|| std::array::from_fn(formula))[n],
+        n => formula(n),
+    }
 }
 
 /// New position of a smooth (or dart) vertex of the given valence, from its

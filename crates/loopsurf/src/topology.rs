@@ -5,6 +5,7 @@
 //! (CSR) arrays sized by the mesh itself.
 
 use crate::error::{Error, Result};
+use rayon::prelude::*;
 use std::sync::OnceLock;
 
 /// Marks a missing triangle (the outside of a boundary edge).
@@ -64,54 +65,81 @@ impl Topology {
     /// first endpoint) and `2e+1`, and triangle t adds the interior edges
     /// `2E + 3t + i`.
     pub fn refined(&self) -> Topology {
+        // Every output slot is a pure function of its parent, so each array
+        // is filled in place, in parallel, with no searching or scattering.
         let nv = self.nverts as u32;
-        let ne = self.edges.len() as u32;
+        let ne = self.edges.len();
         let nt = self.tris.len();
-        let mut edges = Vec::with_capacity(2 * ne as usize + 3 * nt);
-        for (e, &[a, b]) in self.edges.iter().enumerate() {
+        let mut edges = vec![[0u32; 2]; 2 * ne + 3 * nt];
+        let mut tris = vec![[0u32; 3]; 4 * nt];
+        let mut tri_edges = vec![[0u32; 3]; 4 * nt];
+        let mut edge_tris = vec![[NONE; 2]; 2 * ne + 3 * nt];
+        let (halves, inner) = edges.split_at_mut(2 * ne);
+        halves.par_chunks_mut(2).enumerate().for_each(|(e, out)| {
+            let [a, b] = self.edges[e];
             let m = nv + e as u32;
-            edges.push([a, m]);
-            edges.push([b, m]);
-        }
-        let mut tris = Vec::with_capacity(4 * nt);
-        let mut tri_edges = Vec::with_capacity(4 * nt);
-        for (t, (c, te)) in self.tris.iter().zip(&self.tri_edges).enumerate() {
-            let m = te.map(|e| nv + e);
-            let half = |i: usize, v: u32| {
-                let e = te[i];
-                if self.edges[e as usize][0] == v {
-                    2 * e
-                } else {
-                    2 * e + 1
+            out[0] = [a, m];
+            out[1] = [b, m];
+        });
+        let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
+        half_tris
+            .par_chunks_mut(2)
+            .enumerate()
+            .for_each(|(e, out)| {
+                // The half of edge e at vertex v lies in the children at v's
+                // corner of e's triangles.
+                let child = |t: u32, v: u32| match t {
+                    NONE => NONE,
+                    t => 4 * t + corner_of(self.tris[t as usize], v),
+                };
+                let [t0, t1] = self.edge_tris[e];
+                for (h, &v) in self.edges[e].iter().enumerate() {
+                    out[h] = [child(t0, v), child(t1, v)];
                 }
-            };
-            let inner = |i: u32| 2 * ne + 3 * t as u32 + i;
-            // Interior edge i lies opposite corner i, in child i.
-            edges.push(sorted(m[0], m[2]));
-            edges.push(sorted(m[1], m[0]));
-            edges.push(sorted(m[2], m[1]));
-            tris.push([c[0], m[0], m[2]]);
-            tri_edges.push([half(0, c[0]), inner(0), half(2, c[0])]);
-            tris.push([m[0], c[1], m[1]]);
-            tri_edges.push([half(0, c[1]), half(1, c[1]), inner(1)]);
-            tris.push([m[2], m[1], c[2]]);
-            tri_edges.push([inner(2), half(1, c[2]), half(2, c[2])]);
-            tris.push([m[1], m[2], m[0]]);
-            tri_edges.push([inner(2), inner(0), inner(1)]);
-        }
-        let mut edge_tris = vec![[NONE; 2]; edges.len()];
-        for (t, te) in tri_edges.iter().enumerate() {
-            for &e in te {
-                let slot = &mut edge_tris[e as usize];
-                if slot[0] == NONE {
-                    slot[0] = t as u32;
-                } else {
-                    slot[1] = t as u32;
+            });
+        inner_tris
+            .par_chunks_mut(3)
+            .enumerate()
+            .for_each(|(t, out)| {
+                let t = t as u32;
+                for (i, slot) in out.iter_mut().enumerate() {
+                    *slot = [4 * t + i as u32, 4 * t + 3];
                 }
-            }
-        }
+            });
+        inner
+            .par_chunks_mut(3)
+            .zip(tris.par_chunks_mut(4))
+            .zip(tri_edges.par_chunks_mut(4))
+            .enumerate()
+            .for_each(|(t, ((inner_edges, child_tris), child_edges))| {
+                let c = self.tris[t];
+                let te = self.tri_edges[t];
+                let m = te.map(|e| nv + e);
+                let half = |i: usize, v: u32| {
+                    let e = te[i];
+                    if self.edges[e as usize][0] == v {
+                        2 * e
+                    } else {
+                        2 * e + 1
+                    }
+                };
+                let first_inner = 2 * ne as u32 + 3 * t as u32;
+                let inner = |i: u32| first_inner + i;
+                // Interior edge i lies opposite corner i, in child i.
+                inner_edges[0] = sorted(m[0], m[2]);
+                inner_edges[1] = sorted(m[1], m[0]);
+                inner_edges[2] = sorted(m[2], m[1]);
+                child_tris[0] = [c[0], m[0], m[2]];
+                child_edges[0] = [half(0, c[0]), inner(0), half(2, c[0])];
+                child_tris[1] = [m[0], c[1], m[1]];
+                child_edges[1] = [half(0, c[1]), half(1, c[1]), inner(1)];
+                child_tris[2] = [m[2], m[1], c[2]];
+                child_edges[2] = [inner(2), half(1, c[2]), half(2, c[2])];
+                child_tris[3] = [m[1], m[2], m[0]];
+                child_edges[3] = [inner(2), inner(0), inner(1)];
+            });
         Topology {
-            nverts: self.nverts + self.edges.len(),
+            nverts: self.nverts + ne,
             tris,
             edges,
             edge_tris,
@@ -373,6 +401,17 @@ fn walk_fan(
         });
     }
     Ok(())
+}
+
+/// Which corner of triangle c is vertex v (v must be one of them).
+fn corner_of(c: [u32; 3], v: u32) -> u32 {
+    if c[0] == v {
+        0
+    } else if c[1] == v {
+        1
+    } else {
+        2
+    }
 }
 
 fn sorted(a: u32, b: u32) -> [u32; 2] {

@@ -168,7 +168,7 @@ fn assert_matches_box_spline(net: &ControlNet, levels: u32) -> usize {
         .map(|t| regular_stencil(net, t))
         .collect();
     let mut checked = 0;
-    for (origin, limit) in refined.origins.iter().zip(&limits) {
+    for (origin, limit) in refined.origins().zip(&limits) {
         let o = origin.unwrap();
         let scale = (1u64 << levels) as f64;
         assert_eq!((o.v * scale).fract(), 0.0, "parameters are dyadic");
@@ -194,7 +194,7 @@ fn regular_triangles_match_the_box_spline() {
     let checked = assert_matches_box_spline(&net, 3);
     assert_eq!(
         checked,
-        net.refine_uniform(3).unwrap().origins.len(),
+        net.refine_uniform(3).unwrap().origins().len(),
         "torus is all regular"
     );
 }
@@ -325,7 +325,7 @@ fn refinement_keeps_indices_and_features() {
     // Level 1 adds one vertex per edge; level 2 one per level-1 edge.
     let ne1 = 2 * ne + 3 * nt;
     assert_eq!(r.net.points().len(), nv + ne + ne1);
-    assert_eq!(r.origins.len(), r.net.points().len());
+    assert_eq!(r.origins().len(), r.net.points().len());
     // The apex is still a fixed corner, the boundary still hard.
     assert_eq!(r.net.points()[0], net.points()[0]);
     assert_eq!(r.net.vertex_kinds()[0], VertexKind::Corner);
@@ -334,7 +334,7 @@ fn refinement_keeps_indices_and_features() {
     assert_eq!(r.net.features().num_hard_edges(), 4 * 8);
     // Original vertices sit at triangle corners.
     for v in 0..nv {
-        let o = r.origins[v].unwrap();
+        let o = r.origin(v).unwrap();
         let c = net.triangles()[o.tri as usize];
         let corner =
             [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][c.iter().position(|&x| x as usize == v).unwrap()];
