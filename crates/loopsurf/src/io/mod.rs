@@ -215,6 +215,23 @@ fn write_f64(w: &mut impl Write, x: f64) -> std::io::Result<()> {
 }
 
 /// Writes a point as three space-separated round-tripping numbers.
+/// The body shared by OFF and ASCII PLY: one `x y z` line per vertex, then
+/// one `3 i j k` line per triangle.
+fn write_vertex_and_face_lines(
+    w: &mut impl Write,
+    points: &[DVec3],
+    tris: &[[u32; 3]],
+) -> std::io::Result<()> {
+    for &p in points {
+        write_point(w, p)?;
+        w.write_all(b"\n")?;
+    }
+    for t in tris {
+        writeln!(w, "3 {} {} {}", t[0], t[1], t[2])?;
+    }
+    Ok(())
+}
+
 fn write_point(w: &mut impl Write, p: DVec3) -> std::io::Result<()> {
     write_f64(w, p.x)?;
     w.write_all(b" ")?;

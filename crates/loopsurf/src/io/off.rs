@@ -133,12 +133,6 @@ pub fn write_off(path: &Path, points: &[DVec3], tris: &[[u32; 3]]) -> Result<()>
     let mut w = super::create(path)?;
     let io = super::io_error(path);
     writeln!(w, "OFF\n{} {} 0", points.len(), tris.len()).map_err(&io)?;
-    for &p in points {
-        super::write_point(&mut w, p).map_err(&io)?;
-        w.write_all(b"\n").map_err(&io)?;
-    }
-    for t in tris {
-        writeln!(w, "3 {} {} {}", t[0], t[1], t[2]).map_err(&io)?;
-    }
+    super::write_vertex_and_face_lines(&mut w, points, tris).map_err(&io)?;
     super::finish(w, path)
 }
