@@ -205,3 +205,34 @@ fn bad_feature_tags() {
     assert!(net.tag_edge(0, 2).unwrap());
     assert!(!net.tag_edge(2, 0).unwrap());
 }
+
+#[test]
+fn cgal_pig_stl_is_non_manifold_after_welding() {
+    // A real case: CGAL's pig.stl (binary, 16848 facets) welds into 8642
+    // vertices, and vertex 90 then joins two separate fans of triangles.
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../.cache/cgal/data/meshes/pig.stl");
+    if !path.exists() {
+        assert!(
+            std::env::var_os("LOOPSURF_REQUIRE_DATA").is_none(),
+            "{} missing",
+            path.display()
+        );
+        return;
+    }
+    let err = ControlNet::read(&path).unwrap_err();
+    assert!(
+        matches!(
+            err.root(),
+            Error::NonManifoldVertex {
+                vertex: 90,
+                ntris: 5,
+                fans: 2
+            }
+        ),
+        "{err}"
+    );
+    let data = loopsurf::io::read_mesh(&path, &Default::default()).unwrap();
+    assert_eq!((data.points.len(), data.tris.len()), (8642, 16848));
+    assert_eq!(data.welded, 3 * 16848 - 8642);
+}
