@@ -2,7 +2,6 @@
 
 use crate::input::Input;
 use loopsurf::Error;
-use std::io::Write;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -12,14 +11,10 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
-    let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
-    for [a, b] in net.hard_edges() {
-        // A closed pipe (e.g. `| head`) is not an error worth reporting.
-        if writeln!(out, "{a} {b}").is_err() {
-            return Ok(());
+    crate::write_stdout(|out| {
+        for [a, b] in net.hard_edges() {
+            writeln!(out, "{a} {b}")?;
         }
-    }
-    let _ = out.flush();
-    Ok(())
+        Ok(())
+    })
 }

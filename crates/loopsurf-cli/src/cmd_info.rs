@@ -13,98 +13,108 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
-    let topo = net.topology();
-    let nv = topo.num_vertices();
-    let unreferenced: Vec<usize> = (0..nv).filter(|&v| topo.is_unreferenced(v)).collect();
-    println!("mesh: {}", args.input.name());
-    println!(
-        "vertices: {nv}  triangles: {}  edges: {}",
-        topo.num_triangles(),
-        topo.num_edges()
-    );
-    if !unreferenced.is_empty() {
-        let shown: Vec<String> = unreferenced
-            .iter()
-            .take(10)
-            .map(|v| v.to_string())
-            .collect();
-        let more = if unreferenced.len() > 10 { " ..." } else { "" };
-        println!(
-            "unreferenced vertices (kept, ignored): {} [{}{more}]",
-            unreferenced.len(),
-            shown.join(" ")
-        );
-    }
-    if net.welded_vertices() > 0 {
-        println!(
-            "welded STL vertices (exactly equal coordinates): {}",
-            net.welded_vertices()
-        );
-    }
-
-    let mut valences = BTreeMap::new();
-    for v in (0..nv).filter(|&v| !topo.is_unreferenced(v)) {
-        *valences.entry(topo.valence(v)).or_insert(0usize) += 1;
-    }
-    let hist: Vec<String> = valences.iter().map(|(k, n)| format!("{k}:{n}")).collect();
-    println!("valence histogram: {}", hist.join(" "));
-
-    let loops = topo.boundary_loops();
-    let lengths: Vec<String> = loops.iter().map(|l| l.len().to_string()).collect();
-    println!(
-        "boundary loops: {}{}",
-        loops.len(),
-        if loops.is_empty() {
-            String::new()
-        } else {
-            format!(" (edges: {})", lengths.join(" "))
+    crate::write_stdout(|out| {
+        let topo = net.topology();
+        let nv = topo.num_vertices();
+        let unreferenced: Vec<usize> = (0..nv).filter(|&v| topo.is_unreferenced(v)).collect();
+        writeln!(out, "mesh: {}", args.input.name())?;
+        writeln!(
+            out,
+            "vertices: {nv}  triangles: {}  edges: {}",
+            topo.num_triangles(),
+            topo.num_edges()
+        )?;
+        if !unreferenced.is_empty() {
+            let shown: Vec<String> = unreferenced
+                .iter()
+                .take(10)
+                .map(|v| v.to_string())
+                .collect();
+            let more = if unreferenced.len() > 10 { " ..." } else { "" };
+            writeln!(
+                out,
+                "unreferenced vertices (kept, ignored): {} [{}{more}]",
+                unreferenced.len(),
+                shown.join(" ")
+            )?;
         }
-    );
-    let chi = topo.euler_characteristic();
-    if loops.is_empty() && chi % 2 == 0 {
-        println!(
-            "Euler characteristic: {chi} (closed, genus {})",
-            (2 - chi) / 2
-        );
-    } else {
-        println!("Euler characteristic: {chi}");
-    }
+        if net.welded_vertices() > 0 {
+            writeln!(
+                out,
+                "welded STL vertices (exactly equal coordinates): {}",
+                net.welded_vertices()
+            )?;
+        }
 
-    let boundary_edges = (0..topo.num_edges())
-        .filter(|&e| topo.is_boundary_edge(e))
-        .count();
-    let hard = net.features().num_hard_edges();
-    println!(
-        "hard edges: {hard} ({boundary_edges} boundary, {} tagged)",
-        hard - boundary_edges
-    );
-    let kinds = net.vertex_kinds();
-    let count = |k: VertexKind| {
-        (0..nv)
-            .filter(|&v| kinds[v] == k && !topo.is_unreferenced(v))
-            .count()
-    };
-    println!(
-        "vertex kinds: smooth {}  dart {}  crease {}  corner {}",
-        count(VertexKind::Smooth),
-        count(VertexKind::Dart),
-        count(VertexKind::Crease),
-        count(VertexKind::Corner)
-    );
+        let mut valences = BTreeMap::new();
+        for v in (0..nv).filter(|&v| !topo.is_unreferenced(v)) {
+            *valences.entry(topo.valence(v)).or_insert(0usize) += 1;
+        }
+        let hist: Vec<String> = valences.iter().map(|(k, n)| format!("{k}:{n}")).collect();
+        writeln!(out, "valence histogram: {}", hist.join(" "))?;
 
-    let diagonal = net.bbox_diagonal();
-    let limits = net.limit_points();
-    let deviations: Vec<f64> = (0..nv)
-        .filter(|&v| !topo.is_unreferenced(v))
-        .map(|v| (limits[v] - net.points()[v]).length())
-        .collect();
-    let mean = deviations.iter().sum::<f64>() / deviations.len() as f64;
-    let max = deviations.iter().copied().fold(0.0, f64::max);
-    println!("bounding-box diagonal: {diagonal}");
-    println!(
-        "limit deviation of control vertices: mean {:.4}%  max {:.4}% of the diagonal",
-        100.0 * mean / diagonal,
-        100.0 * max / diagonal
-    );
-    Ok(())
+        let loops = topo.boundary_loops();
+        let lengths: Vec<String> = loops.iter().map(|l| l.len().to_string()).collect();
+        writeln!(
+            out,
+            "boundary loops: {}{}",
+            loops.len(),
+            if loops.is_empty() {
+                String::new()
+            } else {
+                format!(" (edges: {})", lengths.join(" "))
+            }
+        )?;
+        let chi = topo.euler_characteristic();
+        if loops.is_empty() && topo.num_components() == 1 {
+            writeln!(
+                out,
+                "Euler characteristic: {chi} (closed, genus {})",
+                (2 - chi) / 2
+            )?;
+        } else {
+            writeln!(out, "Euler characteristic: {chi}")?;
+        }
+
+        let boundary_edges = (0..topo.num_edges())
+            .filter(|&e| topo.is_boundary_edge(e))
+            .count();
+        let hard = net.features().num_hard_edges();
+        writeln!(
+            out,
+            "hard edges: {hard} ({boundary_edges} boundary, {} tagged)",
+            hard - boundary_edges
+        )?;
+        let kinds = net.vertex_kinds();
+        let count = |k: VertexKind| {
+            (0..nv)
+                .filter(|&v| kinds[v] == k && !topo.is_unreferenced(v))
+                .count()
+        };
+        writeln!(
+            out,
+            "vertex kinds: smooth {}  dart {}  crease {}  corner {}",
+            count(VertexKind::Smooth),
+            count(VertexKind::Dart),
+            count(VertexKind::Crease),
+            count(VertexKind::Corner)
+        )?;
+
+        let diagonal = net.bbox_diagonal();
+        let limits = net.limit_points();
+        let deviations: Vec<f64> = (0..nv)
+            .filter(|&v| !topo.is_unreferenced(v))
+            .map(|v| (limits[v] - net.points()[v]).length())
+            .collect();
+        let mean = deviations.iter().sum::<f64>() / deviations.len() as f64;
+        let max = deviations.iter().copied().fold(0.0, f64::max);
+        writeln!(out, "bounding-box diagonal: {diagonal}")?;
+        writeln!(
+            out,
+            "limit deviation of control vertices: mean {:.4}%  max {:.4}% of the diagonal",
+            100.0 * mean / diagonal,
+            100.0 * max / diagonal
+        )?;
+        Ok(())
+    })
 }

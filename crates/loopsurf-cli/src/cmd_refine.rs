@@ -22,16 +22,18 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
+    io::check_writable(&args.output)?;
     let net = args.input.load()?;
     let start = Instant::now();
     let refined = net.refine_uniform(args.levels)?;
+    let refined_net = refined.net();
     let seconds = start.elapsed().as_secs_f64();
     let points = if args.limit {
         refined.limit_points()
     } else {
-        refined.net.points().to_vec()
+        refined_net.points().to_vec()
     };
-    let tris = refined.net.triangles();
+    let tris = refined_net.triangles();
     let is_vtu = args
         .output
         .extension()
@@ -67,7 +69,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         if args.limit { " (limit positions)" } else { "" },
         points.len(),
         tris.len(),
-        refined.net.features().num_hard_edges(),
+        refined_net.features().num_hard_edges(),
         seconds,
         tris.len() as f64 / seconds.max(1e-12) / 1e6,
         args.output.display()

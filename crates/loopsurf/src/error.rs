@@ -24,7 +24,7 @@ pub enum Error {
         source: std::io::Error,
     },
     /// The file extension names no format loopsurf knows.
-    #[error("{}: unknown mesh format (expected .off, .obj, .ply, .stl or .tri)", path.display())]
+    #[error("{}: unknown mesh format (expected .off, .obj, .ply, .stl or .tri; .vtu for output)", path.display())]
     UnknownFormat { path: PathBuf },
     /// A line or record that does not parse.
     #[error("line {line}: {message}")]
@@ -71,6 +71,10 @@ pub enum Error {
         ntris: usize,
         fans: usize,
     },
+    /// An interior vertex with only two neighbours: two triangles on the same
+    /// three corners, which no tangent plane or Loop rule makes sense of.
+    #[error("interior vertex {vertex} has only two neighbours (triangles {tris:?} share all three corners)")]
+    InteriorValenceTwo { vertex: u32, tris: Vec<u32> },
     /// Two neighbouring triangles traverse their shared edge in the same direction.
     #[error(
         "inconsistently oriented neighbours: triangles {tris:?} both traverse edge {a} -> {b}"

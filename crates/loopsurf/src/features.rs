@@ -19,7 +19,8 @@ pub enum VertexKind {
     /// Exactly two hard edges: cubic B-spline rule along the crease.
     Crease,
     /// More than two hard edges, or tagged: fixed. Unreferenced vertices
-    /// are also reported as corners, since nothing moves them.
+    /// are also classified as corners, since nothing moves them (reports
+    /// such as `loopsurf info` count them separately).
     Corner,
 }
 
@@ -44,7 +45,7 @@ pub struct Features {
 
 impl Features {
     /// No tags yet; boundary edges are hard from the start.
-    pub fn new(topo: &Topology) -> Features {
+    pub(crate) fn new(topo: &Topology) -> Features {
         Features {
             hard_edge: (0..topo.num_edges())
                 .map(|e| topo.is_boundary_edge(e))
@@ -68,7 +69,7 @@ impl Features {
 
     /// Tags the edge joining a and b as hard. Returns whether it was not hard
     /// before. Fails when a and b are not joined by an edge.
-    pub fn tag_edge(&mut self, topo: &Topology, a: u32, b: u32) -> Result<bool> {
+    pub(crate) fn tag_edge(&mut self, topo: &Topology, a: u32, b: u32) -> Result<bool> {
         let n = topo.num_vertices();
         if a as usize >= n || b as usize >= n {
             return Err(Error::InvalidArgument(format!(
@@ -82,7 +83,7 @@ impl Features {
     }
 
     /// Tags vertex v as a corner. Returns whether it was not tagged before.
-    pub fn tag_vertex(&mut self, v: u32) -> Result<bool> {
+    pub(crate) fn tag_vertex(&mut self, v: u32) -> Result<bool> {
         let n = self.tagged_vertex.len();
         let slot = self.tagged_vertex.get_mut(v as usize).ok_or_else(|| {
             Error::InvalidArgument(format!(
@@ -94,7 +95,7 @@ impl Features {
 
     /// Tags every interior edge whose two triangle normals make an angle of
     /// more than `degrees`. Returns how many edges became hard.
-    pub fn tag_by_angle(
+    pub(crate) fn tag_by_angle(
         &mut self,
         topo: &Topology,
         points: &[DVec3],
@@ -112,7 +113,7 @@ impl Features {
         };
         let mut tagged = 0;
         for (e, &[t0, t1]) in topo.edge_triangles().iter().enumerate() {
-            if self.hard_edge[e] || topo.is_boundary_edge(e) {
+            if self.hard_edge[e] {
                 continue;
             }
             let (n0, n1) = (normal(t0), normal(t1));

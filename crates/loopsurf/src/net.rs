@@ -31,30 +31,28 @@ impl ControlNet {
     /// Validation errors name the file and, for text formats, the line.
     pub fn read_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<ControlNet> {
         let path = path.as_ref();
-        let data = io::read_mesh(path, opts)?;
-        let line_of = |err: &Error| match err.element() {
-            Some(Element::Triangle(t)) => data.tri_lines.get(t).copied(),
-            Some(Element::Vertex(v)) => data.vertex_lines.get(v).copied(),
-            None => None,
-        };
-        let welded = data.welded;
-        match Self::from_indices(data.points.clone(), &data.tris) {
-            Ok(mut net) => {
-                net.welded = welded;
-                Ok(net)
-            }
-            Err(err) => {
-                let line = line_of(&err);
-                Err(err.in_file(path, line))
-            }
-        }
+        let mut data = io::read_mesh(path, opts)?;
+        let points = std::mem::take(&mut data.points);
+        Self::from_indices(points, &data.tris)
+            .map(|net| net.with_welded(data.welded))
+            .map_err(|err| {
+                let line = match err.element() {
+                    Some(Element::Triangle(t)) => data.tri_lines.get(t).copied(),
+                    Some(Element::Vertex(v)) => data.vertex_lines.get(v).copied(),
+                    None => None,
+                };
+                err.in_file(path, line)
+            })
     }
 
     /// Builds a net from a reader's output.
     pub fn from_mesh_data(data: MeshData) -> Result<ControlNet> {
-        let mut net = Self::from_indices(data.points, &data.tris)?;
-        net.welded = data.welded;
-        Ok(net)
+        Ok(Self::from_indices(data.points, &data.tris)?.with_welded(data.welded))
+    }
+
+    fn with_welded(mut self, welded: usize) -> ControlNet {
+        self.welded = welded;
+        self
     }
 
     /// Builds a net from coordinates and 0-based triangles.
@@ -250,10 +248,16 @@ impl ControlNet {
     }
 
     /// Limit tangents at control vertex v from the tangent masks.
-    pub fn limit_tangents(&self, v: usize) -> Tangents {
+    pub fn limit_tangents(&self, v: usize) -> Result<Tangents> {
+        if v >= self.points.len() {
+            return Err(Error::InvalidArgument(format!(
+                "vertex {v}: index out of range (the net has {} vertices)",
+                self.points.len()
+            )));
+        }
         let p = |i: u32| self.points[i as usize];
-        match self.features.vertex_kind(&self.topo, v) {
-            VertexKind::Smooth | VertexKind::Dart => {
+        Ok(match self.features.vertex_kind(&self.topo, v) {
+            VertexKind::Smooth => {
                 let ring = self.topo.ring(v);
                 let (c, s) = rules::smooth_tangent_weights(ring.len());
                 let t1 = ring.iter().zip(&c).map(|(&n, w)| *w * p(n)).sum();
@@ -264,8 +268,9 @@ impl ControlNet {
                 let hard = self.features.hard_neighbours(&self.topo, v);
                 Tangents::Crease(rules::crease_tangent(p(hard[0]), p(hard[1])))
             }
+            VertexKind::Dart => Tangents::Dart,
             VertexKind::Corner => Tangents::Corner,
-        }
+        })
     }
 }
 
@@ -278,6 +283,10 @@ pub enum Tangents {
     /// Crease vertex: the tangent of the crease curve, from one crease
     /// neighbour to the other in ring order.
     Crease(DVec3),
+    /// A dart has a tangent plane, but no tangent mask gives it: the ½ ½
+    /// rule on its hard edge breaks the symmetry eq. 4 relies on, so it comes
+    /// from the eigenstructure of the dart's local matrix (the evaluator's job).
+    Dart,
     /// A corner has no tangent plane.
     Corner,
 }

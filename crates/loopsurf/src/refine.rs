@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::features::VertexKind;
 use crate::net::{ControlNet, NeighbourSums};
 use crate::rules;
-use crate::topology::NONE;
+use crate::topology::{corner_of, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -26,12 +26,8 @@ pub struct SurfacePoint {
 /// The result of [`refine_uniform`].
 #[derive(Debug, Clone)]
 pub struct Refinement {
-    /// The refined net: positions, triangles, hard edges and corners.
-    /// Vertex i of the input keeps index i; triangle t of level l has the
-    /// children 4t … 4t+3 on level l + 1.
-    pub net: ControlNet,
-    /// Number of levels applied.
-    pub levels: u32,
+    net: ControlNet,
+    levels: u32,
     /// Where each vertex sits, as integer multiples of 2^-levels: 8 bytes a
     /// vertex instead of 24, which matters at millions of vertices.
     origins: Vec<Dyadic>,
@@ -46,6 +42,23 @@ struct Dyadic {
 }
 
 impl Refinement {
+    /// The refined net: positions, triangles, hard edges and corners.
+    /// Vertex i of the input keeps index i; triangle t of level l has the
+    /// children 4t … 4t+3 on level l + 1.
+    pub fn net(&self) -> &ControlNet {
+        &self.net
+    }
+
+    /// The refined net, without the origins.
+    pub fn into_net(self) -> ControlNet {
+        self.net
+    }
+
+    /// Number of levels applied.
+    pub fn levels(&self) -> u32 {
+        self.levels
+    }
+
     /// Every refined vertex pushed to the limit surface with its limit mask.
     pub fn limit_points(&self) -> Vec<DVec3> {
         self.net.limit_points()
@@ -53,8 +66,9 @@ impl Refinement {
 
     /// Where refined vertex `vertex` sits on the control net: its control
     /// triangle and dyadic (v, w). `None` for vertices no triangle uses.
+    /// Also `None` for an index past the last vertex.
     pub fn origin(&self, vertex: usize) -> Option<SurfacePoint> {
-        let d = self.origins[vertex];
+        let d = *self.origins.get(vertex)?;
         let scale = (1u32 << self.levels) as f64;
         (d.tri != NONE).then(|| SurfacePoint {
             tri: d.tri,
@@ -83,10 +97,17 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
             "refinement levels {levels}: at most {MAX_LEVELS} are supported"
         )));
     }
-    let final_tris = (net.triangles().len() as u128) << (2 * levels);
-    if final_tris >= u32::MAX as u128 {
+    // Edges outnumber triangles and vertices, so they set the limit.
+    let (mut tris, mut edges) = (
+        net.triangles().len() as u128,
+        net.topology().num_edges() as u128,
+    );
+    for _ in 0..levels {
+        (tris, edges) = (4 * tris, 2 * edges + 3 * tris);
+    }
+    if edges >= u32::MAX as u128 {
         return Err(Error::InvalidArgument(format!(
-            "refining {} triangles {levels} times gives {final_tris} triangles, more than 32-bit indices hold",
+            "refining {} triangles {levels} times gives {edges} edges, more than 32-bit indices hold",
             net.triangles().len()
         )));
     }
@@ -100,7 +121,8 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
                 j: 0,
             },
             Some(&t) => {
-                let [i, j] = corners(full)[corner_of(topo.triangles()[t as usize], v)];
+                let [i, j] =
+                    corners(full)[corner_of(topo.triangles()[t as usize], v as u32) as usize];
                 Dyadic { tri: t, i, j }
             }
         })
@@ -165,10 +187,6 @@ fn corner_params(t: usize, level: u32, full: u16) -> [[u16; 2]; 3] {
     p
 }
 
-fn corner_of(c: [u32; 3], v: usize) -> usize {
-    c.iter().position(|&x| x as usize == v).unwrap_or(0)
-}
-
 fn local_edge(tri_edges: [u32; 3], e: usize) -> usize {
     tri_edges.iter().position(|&x| x as usize == e).unwrap_or(0)
 }
@@ -180,7 +198,6 @@ fn subdivide(net: &ControlNet) -> ControlNet {
     let points = net.points();
     let kinds = features.vertex_kinds(topo);
     let sums = NeighbourSums::new(topo, features, points);
-    let tris = topo.triangles();
     let mut new_points = vec![DVec3::ZERO; points.len() + topo.num_edges()];
     let (vertex_points, edge_points) = new_points.split_at_mut(points.len());
     vertex_points
@@ -200,12 +217,13 @@ fn subdivide(net: &ControlNet) -> ControlNet {
         let [a, b] = topo.edges()[e];
         let (pa, pb) = (points[a as usize], points[b as usize]);
         let [t0, t1] = topo.edge_triangles()[e];
-        *out = if features.is_hard_edge(e) || t1 == NONE {
+        // Boundary edges are always hard, so both triangles exist below.
+        *out = if features.is_hard_edge(e) {
             rules::hard_edge(pa, pb)
         } else {
             let opposite = |t: u32| {
                 let i = local_edge(topo.triangle_edges()[t as usize], e);
-                points[tris[t as usize][(i + 2) % 3] as usize]
+                points[topo.opposite(t as usize, i) as usize]
             };
             rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
         };

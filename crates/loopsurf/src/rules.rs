@@ -102,8 +102,14 @@ pub fn corner_limit(x: DVec3) -> DVec3 {
 /// Returns the weight of the vertex and of its ring neighbours, with ring
 /// position 0 the neighbour across the hard edge (the ring is cyclic, so
 /// the orientation does not matter: the mask is symmetric about that edge).
+///
+/// OpenSubdiv applies the smooth limit mask at darts, so its limit points
+/// differ from these (exact) ones there.
 pub fn dart_limit_weights(valence: usize) -> (f64, Vec<f64>) {
     let n = valence;
+    if n == 0 {
+        return (1.0, Vec::new());
+    }
     let beta = loop_beta(n);
     let mut vertex = 1.0;
     let mut ring = vec![0.0; n];

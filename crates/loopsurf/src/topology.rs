@@ -16,9 +16,10 @@ pub const NONE: u32 = u32::MAX;
 pub struct Topology {
     nverts: usize,
     tris: Vec<[u32; 3]>,
-    /// Edge endpoints, smaller index first. Edges are numbered in order of
-    /// first appearance in the triangle list, so refined vertices (one per
-    /// edge) follow the input's triangle order.
+    /// Edge endpoints, smaller index first. An input net numbers its edges
+    /// in order of first appearance in the triangle list, so refined vertices
+    /// (one per edge) follow the input's triangle order; a refined level
+    /// numbers them as [`Topology::refined`] says.
     edges: Vec<[u32; 2]>,
     /// The one or two triangles of each edge; the second is [`NONE`] on a boundary.
     edge_tris: Vec<[u32; 2]>,
@@ -42,7 +43,7 @@ impl Topology {
     /// Indices must already be in range and distinct within each triangle.
     /// Fails on non-manifold edges, inconsistently oriented neighbours and
     /// non-manifold vertices.
-    pub fn new(nverts: usize, tris: Vec<[u32; 3]>) -> Result<Topology> {
+    pub(crate) fn new(nverts: usize, tris: Vec<[u32; 3]>) -> Result<Topology> {
         let (edges, edge_tris, tri_edges) = build_edges(&tris)?;
         let topo = Topology {
             nverts,
@@ -54,6 +55,16 @@ impl Topology {
         };
         let rings = topo.build_rings()?;
         let _ = topo.rings.set(rings);
+        // Two triangles on the same three corners close a "pillow": its
+        // interior vertices have two neighbours and no tangent plane.
+        if let Some(v) = (0..nverts).find(|&v| {
+            !topo.is_boundary_vertex(v) && !topo.is_unreferenced(v) && topo.valence(v) < 3
+        }) {
+            return Err(Error::InteriorValenceTwo {
+                vertex: v as u32,
+                tris: topo.fan(v).to_vec(),
+            });
+        }
         Ok(topo)
     }
 
@@ -193,6 +204,32 @@ impl Topology {
                 .map(|e| e as usize)
         })
     }
+    /// Number of connected pieces (triangles joined across edges).
+    pub fn num_components(&self) -> usize {
+        let mut seen = vec![false; self.tris.len()];
+        let mut stack = Vec::new();
+        let mut pieces = 0;
+        for start in 0..self.tris.len() {
+            if seen[start] {
+                continue;
+            }
+            pieces += 1;
+            seen[start] = true;
+            stack.push(start);
+            while let Some(t) = stack.pop() {
+                for &e in &self.tri_edges[t] {
+                    for &n in &self.edge_tris[e as usize] {
+                        if n != NONE && !seen[n as usize] {
+                            seen[n as usize] = true;
+                            stack.push(n as usize);
+                        }
+                    }
+                }
+            }
+        }
+        pieces
+    }
+
     /// The vertex of triangle t opposite its local edge i.
     pub fn opposite(&self, t: usize, i: usize) -> u32 {
         self.tris[t][(i + 2) % 3]
@@ -404,7 +441,7 @@ fn walk_fan(
 }
 
 /// Which corner of triangle c is vertex v (v must be one of them).
-fn corner_of(c: [u32; 3], v: u32) -> u32 {
+pub(crate) fn corner_of(c: [u32; 3], v: u32) -> u32 {
     if c[0] == v {
         0
     } else if c[1] == v {

@@ -50,7 +50,7 @@ fn limits_are_invariant_on_every_vertex_kind() {
     assert_eq!(net.topology().valence(2 * n + 1), n);
     assert_limit_invariant(&net, 1, 1e-13);
     // Level-1 vertices (edge points) after two more levels.
-    let level1 = net.refine_uniform(1).unwrap().net;
+    let level1 = net.refine_uniform(1).unwrap().into_net();
     assert_limit_invariant(&level1, 2, 1e-13);
 }
 
@@ -257,7 +257,7 @@ fn boundary_is_the_cubic_bspline_of_its_polygon() {
     let coarse = net.topology().boundary_loops().remove(0);
     let levels = 3;
     let refined = net.refine_uniform(levels).unwrap();
-    let mut fine = refined.net.topology().boundary_loops().remove(0);
+    let mut fine = refined.net().topology().boundary_loops().remove(0);
     let start = fine.iter().position(|&v| v == coarse[0]).unwrap();
     fine.rotate_left(start);
     assert_crease_is_bspline(&net, &coarse, levels, &fine);
@@ -275,7 +275,7 @@ fn tagged_crease_loop_is_the_cubic_bspline_of_its_polygon() {
     let levels = 3;
     let refined = net.refine_uniform(levels).unwrap();
     // Walk the refined crease: from each vertex, the hard neighbour not yet visited.
-    let fine_net = &refined.net;
+    let fine_net = refined.net();
     let mut fine = vec![ring[0]];
     let mut prev = u32::MAX;
     loop {
@@ -321,17 +321,17 @@ fn refinement_keeps_indices_and_features() {
         net.topology().num_edges(),
         net.triangles().len(),
     );
-    assert_eq!(r.net.triangles().len(), 16 * nt);
+    assert_eq!(r.net().triangles().len(), 16 * nt);
     // Level 1 adds one vertex per edge; level 2 one per level-1 edge.
     let ne1 = 2 * ne + 3 * nt;
-    assert_eq!(r.net.points().len(), nv + ne + ne1);
-    assert_eq!(r.origins().len(), r.net.points().len());
+    assert_eq!(r.net().points().len(), nv + ne + ne1);
+    assert_eq!(r.origins().len(), r.net().points().len());
     // The apex is still a fixed corner, the boundary still hard.
-    assert_eq!(r.net.points()[0], net.points()[0]);
-    assert_eq!(r.net.vertex_kinds()[0], VertexKind::Corner);
-    let boundary = r.net.topology().boundary_loops()[0].len();
+    assert_eq!(r.net().points()[0], net.points()[0]);
+    assert_eq!(r.net().vertex_kinds()[0], VertexKind::Corner);
+    let boundary = r.net().topology().boundary_loops()[0].len();
     assert_eq!(boundary, 4 * 8);
-    assert_eq!(r.net.features().num_hard_edges(), 4 * 8);
+    assert_eq!(r.net().features().num_hard_edges(), 4 * 8);
     // Original vertices sit at triangle corners.
     for v in 0..nv {
         let o = r.origin(v).unwrap();
@@ -345,7 +345,7 @@ fn refinement_keeps_indices_and_features() {
         let [a, b, c] = n.triangles()[t].map(|i| n.points()[i as usize]);
         (b - a).cross(c - a)
     };
-    let one = net.refine_uniform(1).unwrap().net;
+    let one = net.refine_uniform(1).unwrap().into_net();
     for t in 0..nt {
         for k in 0..4 {
             assert!(tri_normal(&one, 4 * t + k).dot(tri_normal(&net, t)) > 0.0);
@@ -354,4 +354,54 @@ fn refinement_keeps_indices_and_features() {
     assert!(net
         .refine_uniform(loopsurf::refine::MAX_LEVELS + 1)
         .is_err());
+}
+
+/// Largest sine of the angle between the tangent plane of the masks at
+/// vertex `v` and the chords from its limit point to its neighbours' limit
+/// points after `levels` refinements: it must shrink towards zero.
+fn chord_tilt(net: &ControlNet, v: usize, levels: u32) -> f64 {
+    let loopsurf::net::Tangents::Surface(t1, t2) = net.limit_tangents(v).unwrap() else {
+        panic!("vertex {v} has no tangent masks");
+    };
+    let normal = t1.cross(t2).normalize();
+    let refined = net.refine_uniform(levels).unwrap();
+    let limits = refined.limit_points();
+    refined
+        .net()
+        .topology()
+        .ring(v)
+        .iter()
+        .map(|&n| {
+            let chord = limits[n as usize] - limits[v];
+            (chord.dot(normal) / chord.length()).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn smooth_tangent_masks_span_the_limit_tangent_plane() {
+    let net = bicone(9, false);
+    // Slow for valence 9 (the tilt falls like (λ₂/λ₁)ᵏ ≈ 0.74ᵏ), but a wrong
+    // plane would leave it constant.
+    let (coarse, fine) = (chord_tilt(&net, 0, 2), chord_tilt(&net, 0, 7));
+    assert!(
+        fine < coarse / 6.0 && fine < 0.04,
+        "tilt {coarse} -> {fine}"
+    );
+    // Outward: the apex normal points up, away from the body.
+    let loopsurf::net::Tangents::Surface(t1, t2) = net.limit_tangents(0).unwrap() else {
+        panic!()
+    };
+    assert!(t1.cross(t2).z > 0.0);
+    assert!(net.limit_tangents(net.points().len()).is_err());
+    // The crease mask is the cubic B-spline's derivative at the node.
+    let mut net = bicone(9, false);
+    for i in 0..9u32 {
+        net.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
+    }
+    let loopsurf::net::Tangents::Crease(t) = net.limit_tangents(10).unwrap() else {
+        panic!()
+    };
+    let p = |i: usize| net.points()[i];
+    assert!(t.cross(p(11) - p(18)).length() < 1e-14 * t.length() * (p(11) - p(18)).length());
 }

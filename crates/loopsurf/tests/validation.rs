@@ -236,3 +236,13 @@ fn cgal_pig_stl_is_non_manifold_after_welding() {
     assert_eq!((data.points.len(), data.tris.len()), (8642, 16848));
     assert_eq!(data.welded, 3 * 16848 - 8642);
 }
+
+#[test]
+fn pillow_of_two_triangles() {
+    let body = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n";
+    let (err, _) = off_error("pillow.off", body);
+    assert!(
+        matches!(err.root(), Error::InteriorValenceTwo { vertex: 0, .. }),
+        "{err}"
+    );
+}

@@ -105,6 +105,17 @@ pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
 /// `.off`, `.ply` (ASCII, double), `.stl` (binary, single precision), `.tri`
 /// (ASCII Cart3D) or `.vtu` (VTK XML, no data arrays). Text formats write
 /// every coordinate with enough digits to read back bit-exact.
+/// Fails with [`Error::UnknownFormat`] unless [`write_mesh`] can write `path`'s
+/// extension: lets a command refuse a bad output name before long work.
+pub fn check_writable(path: &Path) -> Result<()> {
+    match Format::of(path) {
+        Some(_) => Ok(()),
+        None => Err(Error::UnknownFormat {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
 pub fn write_mesh(path: &Path, points: &[DVec3], tris: &[[u32; 3]]) -> Result<()> {
     match Format::of(path) {
         Some(Format::Off) => write_off(path, points, tris),
