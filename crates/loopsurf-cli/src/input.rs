@@ -15,7 +15,7 @@ pub struct Input {
     #[arg(long, value_name = "NAME", conflicts_with = "mesh")]
     pub example: Option<String>,
     /// Fan-split polygons into triangles instead of rejecting them.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "example")]
     pub triangulate: bool,
     /// Tag every edge whose dihedral angle exceeds DEG degrees as hard.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]

@@ -122,6 +122,17 @@ impl Error {
             | Error::RepeatedIndex { tri, .. }
             | Error::ZeroArea { tri, .. } => Some(Element::Triangle(*tri)),
             Error::NonFiniteCoordinate { vertex, .. } => Some(Element::Vertex(*vertex)),
+            // The last triangle named is the one that broke the rule.
+            Error::NonManifoldEdge { tris, .. } => {
+                tris.last().map(|&t| Element::Triangle(t as usize))
+            }
+            Error::InconsistentOrientation { tris, .. } => {
+                Some(Element::Triangle(tris[1] as usize))
+            }
+            Error::InteriorValenceTwo { tris, .. } => {
+                tris.last().map(|&t| Element::Triangle(t as usize))
+            }
+            Error::NonManifoldVertex { vertex, .. } => Some(Element::Vertex(*vertex as usize)),
             _ => None,
         }
     }

@@ -199,7 +199,7 @@ impl Features {
 
 /// DESIGN.md's classification from a vertex's tag, number of edges and
 /// number of hard edges.
-fn classify(tagged: bool, degree: u32, hard: u32) -> VertexKind {
+pub(crate) fn classify(tagged: bool, degree: u32, hard: u32) -> VertexKind {
     if tagged || degree == 0 {
         return VertexKind::Corner;
     }

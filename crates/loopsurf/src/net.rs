@@ -2,7 +2,7 @@
 //! hard features. Everything a later stage relies on is checked here, once.
 
 use crate::error::{Element, Error, Result};
-use crate::features::{Features, VertexKind};
+use crate::features::{classify, Features, VertexKind};
 use crate::io::{self, MeshData, ReadOptions};
 use crate::rules;
 use crate::topology::Topology;
@@ -197,8 +197,10 @@ impl ControlNet {
 
     /// Where every control vertex lands on the limit surface (its limit mask).
     pub fn limit_points(&self) -> Vec<DVec3> {
-        let kinds = self.vertex_kinds();
         let sums = NeighbourSums::new(&self.topo, &self.features, &self.points);
+        let kinds: Vec<VertexKind> = (0..self.points.len())
+            .map(|v| sums.kind(&self.features, v))
+            .collect();
         let mut limits: Vec<DVec3> = (0..self.points.len())
             .map(|v| {
                 let x = self.points[v];
@@ -291,8 +293,9 @@ pub enum Tangents {
     Corner,
 }
 
-/// Per-vertex sums of neighbour positions gathered in one pass over the
-/// edges: what every vertex and limit mask needs.
+/// Per-vertex sums of neighbour positions and counts of edges, gathered in
+/// one pass over the edges: everything a vertex or limit mask needs,
+/// including the vertex's kind.
 pub(crate) struct NeighbourSums {
     /// Σ of all neighbours.
     pub all: Vec<DVec3>,
@@ -300,6 +303,8 @@ pub(crate) struct NeighbourSums {
     pub hard: Vec<DVec3>,
     /// Number of neighbours.
     pub valence: Vec<u32>,
+    /// Number of hard edges.
+    pub hard_count: Vec<u32>,
 }
 
 impl NeighbourSums {
@@ -309,6 +314,7 @@ impl NeighbourSums {
             all: vec![DVec3::ZERO; n],
             hard: vec![DVec3::ZERO; n],
             valence: vec![0; n],
+            hard_count: vec![0; n],
         };
         for (e, &[a, b]) in topo.edges().iter().enumerate() {
             let (a, b) = (a as usize, b as usize);
@@ -319,9 +325,20 @@ impl NeighbourSums {
             if features.is_hard_edge(e) {
                 s.hard[a] += points[b];
                 s.hard[b] += points[a];
+                s.hard_count[a] += 1;
+                s.hard_count[b] += 1;
             }
         }
         s
+    }
+
+    /// The kind of vertex v (the same as [`Features::vertex_kinds`]).
+    pub fn kind(&self, features: &Features, v: usize) -> VertexKind {
+        classify(
+            features.is_tagged_vertex(v),
+            self.valence[v],
+            self.hard_count[v],
+        )
     }
 }
 

@@ -196,7 +196,6 @@ fn subdivide(net: &ControlNet) -> ControlNet {
     let topo = net.topology();
     let features = net.features();
     let points = net.points();
-    let kinds = features.vertex_kinds(topo);
     let sums = NeighbourSums::new(topo, features, points);
     let mut new_points = vec![DVec3::ZERO; points.len() + topo.num_edges()];
     let (vertex_points, edge_points) = new_points.split_at_mut(points.len());
@@ -205,7 +204,7 @@ fn subdivide(net: &ControlNet) -> ControlNet {
         .enumerate()
         .for_each(|(v, out)| {
             let x = points[v];
-            *out = match kinds[v] {
+            *out = match sums.kind(features, v) {
                 VertexKind::Smooth | VertexKind::Dart => {
                     rules::smooth_vertex(x, sums.all[v], sums.valence[v] as usize)
                 }

@@ -112,6 +112,7 @@ fn non_manifold_edge() {
         other => panic!("wrong kind: {other:?}"),
     }
     assert!(msg.contains("(0, 1)"));
+    assert!(msg.contains("fin.off:10:"), "{msg}");
 }
 
 #[test]
@@ -137,6 +138,7 @@ fn inconsistent_orientation() {
         Error::InconsistentOrientation { tris: [0, 1], .. }
     ));
     assert!(msg.contains("0 -> 2") || msg.contains("2 -> 0"), "{msg}");
+    assert!(msg.contains("flip.off:8:"), "{msg}");
 }
 
 #[test]
