@@ -145,9 +145,9 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
             .enumerate()
             .for_each(|(e, origin)| {
                 let t = topo.edge_triangles()[e][0] as usize;
-                let k = local_edge(topo.triangle_edges()[t], e);
+                let c = topo.triangles()[t];
                 let p = corner_params(t, level, full);
-                let (a, b) = (p[k], p[(k + 1) % 3]);
+                let [a, b] = topo.edges()[e].map(|v| p[corner_of(c, v) as usize]);
                 *origin = Dyadic {
                     tri: (t >> (2 * level)) as u32,
                     i: (a[0] + b[0]) / 2,
@@ -187,10 +187,6 @@ fn corner_params(t: usize, level: u32, full: u16) -> [[u16; 2]; 3] {
     p
 }
 
-fn local_edge(tri_edges: [u32; 3], e: usize) -> usize {
-    tri_edges.iter().position(|&x| x as usize == e).unwrap_or(0)
-}
-
 /// One level of Loop subdivision.
 fn subdivide(net: &ControlNet) -> ControlNet {
     let topo = net.topology();
@@ -220,9 +216,10 @@ fn subdivide(net: &ControlNet) -> ControlNet {
         *out = if features.is_hard_edge(e) {
             rules::hard_edge(pa, pb)
         } else {
+            // The corner that is neither a nor b, without searching.
             let opposite = |t: u32| {
-                let i = local_edge(topo.triangle_edges()[t as usize], e);
-                points[topo.opposite(t as usize, i) as usize]
+                let [c0, c1, c2] = topo.triangles()[t as usize];
+                points[(c0 ^ c1 ^ c2 ^ a ^ b) as usize]
             };
             rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
         };
