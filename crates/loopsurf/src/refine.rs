@@ -102,7 +102,10 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
         net.triangles().len() as u128,
         net.topology().num_edges() as u128,
     );
+    // One new vertex per edge of every level but the last.
+    let mut vertices = net.points().len() as u128;
     for _ in 0..levels {
+        vertices += edges;
         (tris, edges) = (4 * tris, 2 * edges + 3 * tris);
     }
     if edges >= u32::MAX as u128 {
@@ -113,47 +116,33 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
     }
     let topo = net.topology();
     let full = 1u16 << levels;
-    let mut origins: Vec<Dyadic> = (0..topo.num_vertices())
-        .map(|v| match topo.fan(v).first() {
-            None => Dyadic {
-                tri: NONE,
-                i: 0,
-                j: 0,
-            },
-            Some(&t) => {
-                let [i, j] =
-                    corners(full)[corner_of(topo.triangles()[t as usize], v as u32) as usize];
-                Dyadic { tri: t, i, j }
-            }
-        })
-        .collect();
+    let mut origins: Vec<Dyadic> = Vec::with_capacity(vertices as usize);
+    origins.extend((0..topo.num_vertices()).map(|v| match topo.fan(v).first() {
+        None => Dyadic {
+            tri: NONE,
+            i: 0,
+            j: 0,
+        },
+        Some(&t) => {
+            let [i, j] = corners(full)[corner_of(topo.triangles()[t as usize], v as u32) as usize];
+            Dyadic { tri: t, i, j }
+        }
+    }));
     let mut current = net.clone();
     for level in 0..levels {
         let topo = current.topology();
         // New vertices on edges: the midpoint of the edge in its first triangle.
-        let first = origins.len();
-        origins.resize(
-            first + topo.num_edges(),
+        origins.par_extend((0..topo.num_edges()).into_par_iter().map(|e| {
+            let t = topo.edge_triangles()[e][0] as usize;
+            let c = topo.triangles()[t];
+            let p = corner_params(t, level, full);
+            let [a, b] = topo.edges()[e].map(|v| p[corner_of(c, v) as usize]);
             Dyadic {
-                tri: NONE,
-                i: 0,
-                j: 0,
-            },
-        );
-        origins[first..]
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(e, origin)| {
-                let t = topo.edge_triangles()[e][0] as usize;
-                let c = topo.triangles()[t];
-                let p = corner_params(t, level, full);
-                let [a, b] = topo.edges()[e].map(|v| p[corner_of(c, v) as usize]);
-                *origin = Dyadic {
-                    tri: (t >> (2 * level)) as u32,
-                    i: (a[0] + b[0]) / 2,
-                    j: (a[1] + b[1]) / 2,
-                };
-            });
+                tri: (t >> (2 * level)) as u32,
+                i: (a[0] + b[0]) / 2,
+                j: (a[1] + b[1]) / 2,
+            }
+        }));
         current = subdivide(&current);
     }
     Ok(Refinement {

@@ -16,7 +16,8 @@ pub const NONE: u32 = u32::MAX;
 pub struct Topology {
     nverts: usize,
     tris: Vec<[u32; 3]>,
-    /// Edge endpoints, smaller index first. An input net numbers its edges
+    /// Edge endpoints, smaller index first (every level keeps this, and
+    /// [`Topology::refined`] relies on it). An input net numbers its edges
     /// in order of first appearance in the triangle list, so refined vertices
     /// (one per edge) follow the input's triangle order; a refined level
     /// numbers them as [`Topology::refined`] says.
@@ -84,7 +85,9 @@ impl Topology {
         let mut edges = vec![[0u32; 2]; 2 * ne + 3 * nt];
         let mut tris = vec![[0u32; 3]; 4 * nt];
         let mut tri_edges = vec![[0u32; 3]; 4 * nt];
-        let mut edge_tris = vec![[NONE; 2]; 2 * ne + 3 * nt];
+        // Zero-filled allocations come straight from the OS; every slot is
+        // overwritten below.
+        let mut edge_tris = vec![[0u32; 2]; 2 * ne + 3 * nt];
         let (halves, inner) = edges.split_at_mut(2 * ne);
         halves.par_chunks_mut(2).enumerate().for_each(|(e, out)| {
             let [a, b] = self.edges[e];
@@ -126,13 +129,11 @@ impl Topology {
                 let c = self.tris[t];
                 let te = self.tri_edges[t];
                 let m = te.map(|e| nv + e);
+                // Edges store their smaller end first, so the half of local
+                // edge i touching v is decided by comparing v with the other end.
                 let half = |i: usize, v: u32| {
-                    let e = te[i];
-                    if self.edges[e as usize][0] == v {
-                        2 * e
-                    } else {
-                        2 * e + 1
-                    }
+                    let other = if c[i] == v { c[(i + 1) % 3] } else { c[i] };
+                    2 * te[i] + u32::from(v > other)
                 };
                 let first_inner = 2 * ne as u32 + 3 * t as u32;
                 let inner = |i: u32| first_inner + i;
