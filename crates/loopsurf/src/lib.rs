@@ -8,6 +8,7 @@
 //! shapes in [`examples`].
 
 pub mod error;
+pub(crate) mod eval;
 pub mod examples;
 pub mod features;
 pub mod io;

@@ -1,0 +1,105 @@
+//! The quartic box spline of a regular Loop patch (seed 000, eqs. 5–8):
+//! twelve basis functions of (v, w) and their first and second derivatives.
+//!
+//! The control points are numbered as in the seed's Fig. 6: the corners
+//! c0 c1 c2 (at (v, w) = (0,0), (1,0), (0,1)), then the outer ring
+//! counter-clockwise: x4 across c1–c2, x5 x6 around c2, x7 across c2–c0,
+//! x8 x9 around c0, x10 across c0–c1, x11 x12 around c1.
+
+/// Seed 000 eq. (6), times 12: row i holds the coefficients of control point
+/// i on the monomials of eq. (5).
+#[rustfmt::skip]
+const PHI: [[f64; 15]; 12] = [
+    [6., 0., 0., -12., -12., -12., 8., 12., 12., 8., -1., -2., 0., -2., -1.],
+    [1., 4., 2., 6., 6., 0., -4., -6., -12., -4., -1., -2., 0., 4., 2.],
+    [1., 2., 4., 0., 6., 6., -4., -12., -6., -4., 2., 4., 0., -2., -1.],
+    [0., 0., 0., 0., 0., 0., 2., 6., 6., 2., -1., -2., 0., -2., -1.],
+    [0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 2., 1.],
+    [0., 0., 0., 0., 0., 0., 0., 0., 0., 2., 0., 0., 0., -2., -1.],
+    [1., -2., 2., 0., -6., 0., 2., 6., 0., -4., -1., -2., 0., 4., 2.],
+    [1., -4., -2., 6., 6., 0., -4., -6., 0., 2., 1., 2., 0., -2., -1.],
+    [1., -2., -4., 0., 6., 6., 2., 0., -6., -4., -1., -2., 0., 2., 1.],
+    [1., 2., -2., 0., -6., 0., -4., 0., 6., 2., 2., 4., 0., -2., -1.],
+    [0., 0., 0., 0., 0., 0., 2., 0., 0., 0., -1., -2., 0., 0., 0.],
+    [0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 1., 2., 0., 0., 0.],
+];
+
+/// Weights of the twelve control points for X, Xv, Xw, Xvv, Xvw, Xww at
+/// (v, w), in DESIGN.md's evaluation-record order.
+pub fn weights(v: f64, w: f64) -> [[f64; 12]; 6] {
+    // The monomials of eq. (5) and their derivatives, differentiated by hand.
+    let (v2, w2, v3, w3) = (v * v, w * w, v * v * v, w * w * w);
+    #[rustfmt::skip]
+    let monomials: [[f64; 15]; 6] = [
+        [1., v, w, v2, v * w, w2, v3, v2 * w, v * w2, w3, v2 * v2, v3 * w, v2 * w2, v * w3, w2 * w2],
+        [0., 1., 0., 2. * v, w, 0., 3. * v2, 2. * v * w, w2, 0., 4. * v3, 3. * v2 * w, 2. * v * w2, w3, 0.],
+        [0., 0., 1., 0., v, 2. * w, 0., v2, 2. * v * w, 3. * w2, 0., v3, 2. * v2 * w, 3. * v * w2, 4. * w3],
+        [0., 0., 0., 2., 0., 0., 6. * v, 2. * w, 0., 0., 12. * v2, 6. * v * w, 2. * w2, 0., 0.],
+        [0., 0., 0., 0., 1., 0., 0., 2. * v, 2. * w, 0., 0., 3. * v2, 4. * v * w, 3. * w2, 0.],
+        [0., 0., 0., 0., 0., 2., 0., 0., 2. * v, 6. * w, 0., 0., 2. * v2, 6. * v * w, 12. * w2],
+    ];
+    let mut out = [[0.0; 12]; 6];
+    for (d, mono) in monomials.iter().enumerate() {
+        for (i, row) in PHI.iter().enumerate() {
+            out[d][i] = row.iter().zip(mono).map(|(a, b)| a * b).sum::<f64>() / 12.0;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn partition_of_unity_and_derivatives_sum_to_zero() {
+        for &(v, w) in &[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.0, 1.0),
+            (0.3, 0.2),
+            (0.5, 0.5),
+            (0.1, 0.85),
+        ] {
+            let wts = weights(v, w);
+            assert!((wts[0].iter().sum::<f64>() - 1.0).abs() < 1e-15);
+            for derivative in &wts[1..] {
+                assert!(derivative.iter().sum::<f64>().abs() < 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    #[allow(clippy::needless_range_loop)] // i indexes five arrays at once
+    fn derivatives_match_central_differences() {
+        let (v, w, h) = (0.27, 0.31, 1e-5);
+        let at = |v, w| weights(v, w);
+        let c = at(v, w);
+        for i in 0..12 {
+            let dv = (at(v + h, w)[0][i] - at(v - h, w)[0][i]) / (2.0 * h);
+            let dw = (at(v, w + h)[0][i] - at(v, w - h)[0][i]) / (2.0 * h);
+            let dvv = (at(v + h, w)[1][i] - at(v - h, w)[1][i]) / (2.0 * h);
+            let dvw = (at(v, w + h)[1][i] - at(v, w - h)[1][i]) / (2.0 * h);
+            let dww = (at(v, w + h)[2][i] - at(v, w - h)[2][i]) / (2.0 * h);
+            for (got, want) in [
+                (c[1][i], dv),
+                (c[2][i], dw),
+                (c[3][i], dvv),
+                (c[4][i], dvw),
+                (c[5][i], dww),
+            ] {
+                assert!((got - want).abs() < 1e-9, "point {i}: {got} vs {want}");
+            }
+        }
+    }
+
+    #[test]
+    fn corners_take_the_regular_limit_mask() {
+        // At a corner: ½ on the corner, 1/12 on each of its six neighbours.
+        let at_c0 = weights(0.0, 0.0)[0];
+        assert!((at_c0[0] - 0.5).abs() < 1e-15);
+        for i in [1, 2, 6, 7, 8, 9] {
+            assert!((at_c0[i] - 1.0 / 12.0).abs() < 1e-15, "x{}", i + 1);
+        }
+    }
+}
