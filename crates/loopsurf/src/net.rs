@@ -197,56 +197,7 @@ impl ControlNet {
 
     /// Where every control vertex lands on the limit surface (its limit mask).
     pub fn limit_points(&self) -> Vec<DVec3> {
-        let sums = NeighbourSums::new(&self.topo, &self.features, &self.points);
-        let kinds: Vec<VertexKind> = (0..self.points.len())
-            .map(|v| sums.kind(&self.features, v))
-            .collect();
-        let mut limits: Vec<DVec3> = (0..self.points.len())
-            .map(|v| {
-                let x = self.points[v];
-                match kinds[v] {
-                    VertexKind::Smooth => {
-                        rules::smooth_limit(x, sums.all[v], sums.valence[v] as usize)
-                    }
-                    VertexKind::Crease => rules::crease_limit(x, sums.hard[v]),
-                    VertexKind::Corner => rules::corner_limit(x),
-                    VertexKind::Dart => DVec3::NAN, // below: needs the ordered ring
-                }
-            })
-            .collect();
-        let darts: Vec<u32> = (0..kinds.len() as u32)
-            .filter(|&v| kinds[v as usize] == VertexKind::Dart)
-            .collect();
-        if darts.is_empty() {
-            return limits;
-        }
-        // The one neighbour across each dart's hard edge.
-        let mut across = std::collections::HashMap::with_capacity(darts.len());
-        for (e, &[a, b]) in self.topo.edges().iter().enumerate() {
-            if self.features.is_hard_edge(e) {
-                for (v, u) in [(a, b), (b, a)] {
-                    if kinds[v as usize] == VertexKind::Dart {
-                        across.insert(v, u);
-                    }
-                }
-            }
-        }
-        let mut masks = std::collections::HashMap::new();
-        for (&v, ring) in darts.iter().zip(self.topo.rings_of(&darts)) {
-            let n = ring.len();
-            let (own, weights) = masks
-                .entry(n)
-                .or_insert_with(|| rules::dart_limit_weights(n));
-            let hard = ring
-                .iter()
-                .position(|u| Some(u) == across.get(&v))
-                .unwrap_or(0);
-            limits[v as usize] = *own * self.points[v as usize]
-                + (0..n)
-                    .map(|j| weights[(j + n - hard) % n] * self.points[ring[j] as usize])
-                    .sum::<DVec3>();
-        }
-        limits
+        limit_positions(&self.topo, &self.features, &self.points)
     }
 
     /// Limit tangents at control vertex v from the tangent masks.
@@ -274,6 +225,61 @@ impl ControlNet {
             VertexKind::Corner => Tangents::Corner,
         })
     }
+}
+
+/// Limit positions of every vertex of a net given by its parts. Linear in
+/// `points`: the evaluator also runs it on basis vectors to read off masks.
+pub(crate) fn limit_positions(
+    topo: &Topology,
+    features: &Features,
+    points: &[DVec3],
+) -> Vec<DVec3> {
+    let sums = NeighbourSums::new(topo, features, points);
+    let kinds: Vec<VertexKind> = (0..points.len()).map(|v| sums.kind(features, v)).collect();
+    let mut limits: Vec<DVec3> = (0..points.len())
+        .map(|v| {
+            let x = points[v];
+            match kinds[v] {
+                VertexKind::Smooth => rules::smooth_limit(x, sums.all[v], sums.valence[v] as usize),
+                VertexKind::Crease => rules::crease_limit(x, sums.hard[v]),
+                VertexKind::Corner => rules::corner_limit(x),
+                VertexKind::Dart => DVec3::NAN, // below: needs the ordered ring
+            }
+        })
+        .collect();
+    let darts: Vec<u32> = (0..kinds.len() as u32)
+        .filter(|&v| kinds[v as usize] == VertexKind::Dart)
+        .collect();
+    if darts.is_empty() {
+        return limits;
+    }
+    // The one neighbour across each dart's hard edge.
+    let mut across = std::collections::HashMap::with_capacity(darts.len());
+    for (e, &[a, b]) in topo.edges().iter().enumerate() {
+        if features.is_hard_edge(e) {
+            for (v, u) in [(a, b), (b, a)] {
+                if kinds[v as usize] == VertexKind::Dart {
+                    across.insert(v, u);
+                }
+            }
+        }
+    }
+    let mut masks = std::collections::HashMap::new();
+    for (&v, ring) in darts.iter().zip(topo.rings_of(&darts)) {
+        let n = ring.len();
+        let (own, weights) = masks
+            .entry(n)
+            .or_insert_with(|| rules::dart_limit_weights(n));
+        let hard = ring
+            .iter()
+            .position(|u| Some(u) == across.get(&v))
+            .unwrap_or(0);
+        limits[v as usize] = *own * points[v as usize]
+            + (0..n)
+                .map(|j| weights[(j + n - hard) % n] * points[ring[j] as usize])
+                .sum::<DVec3>();
+    }
+    limits
 }
 
 /// Limit tangents at a control vertex.

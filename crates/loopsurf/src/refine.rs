@@ -7,10 +7,11 @@
 //! its dyadic parameter (i/2ᵏ, j/2ᵏ).
 
 use crate::error::{Error, Result};
+use crate::features::Features;
 use crate::features::VertexKind;
 use crate::net::{ControlNet, NeighbourSums};
 use crate::rules;
-use crate::topology::{corner_of, NONE};
+use crate::topology::{corner_of, Topology, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -178,9 +179,20 @@ fn corner_params(t: usize, level: u32, full: u16) -> [[u16; 2]; 3] {
 
 /// One level of Loop subdivision.
 fn subdivide(net: &ControlNet) -> ControlNet {
-    let topo = net.topology();
-    let features = net.features();
-    let points = net.points();
+    let (topo, features) = (net.topology(), net.features());
+    let new_points = subdivide_points(topo, features, net.points());
+    ControlNet::from_parts(new_points, topo.refined(), features.refined(topo))
+}
+
+/// The positions of one subdivision step: old vertices first, then one new
+/// vertex per edge, numbered as [`crate::Topology::refined`] numbers them.
+/// Linear in `points`, so the evaluator also runs it on basis vectors to
+/// read off local subdivision matrices: the masks live only in [`rules`].
+pub(crate) fn subdivide_points(
+    topo: &Topology,
+    features: &Features,
+    points: &[DVec3],
+) -> Vec<DVec3> {
     let sums = NeighbourSums::new(topo, features, points);
     let mut new_points = vec![DVec3::ZERO; points.len() + topo.num_edges()];
     let (vertex_points, edge_points) = new_points.split_at_mut(points.len());
@@ -213,7 +225,7 @@ fn subdivide(net: &ControlNet) -> ControlNet {
             rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
         };
     });
-    ControlNet::from_parts(new_points, topo.refined(), features.refined(topo))
+    new_points
 }
 
 impl ControlNet {

@@ -3,8 +3,11 @@
 //! evaluator that uses them is not there yet, hence the allowance below.
 #![allow(dead_code)]
 
+pub mod affine;
 pub mod box_spline;
 pub mod regular;
+pub mod special;
+pub mod surface;
 
 #[cfg(test)]
 mod tests;

@@ -2,6 +2,7 @@
 //! exact dyadic reference: limit positions of refined vertices.
 
 use super::{box_spline, regular};
+use crate::features::VertexKind;
 use crate::{examples, ControlNet, DVec3};
 use std::path::PathBuf;
 
@@ -99,4 +100,282 @@ fn cgal_regular_patches() {
         eprintln!("{name}: {plain} plain, {phantom} phantom");
         assert!(plain > 0);
     }
+}
+
+/// Every refined vertex of `levels` levels: the evaluator's position equals
+/// its exact limit position. Returns how many points were checked.
+fn check_evaluator(net: &ControlNet, levels: u32) -> usize {
+    let eval = super::surface::Evaluator::new(net);
+    let refined = net.refine_uniform(levels).unwrap();
+    let limits = refined.limit_points();
+    let diag = net.bbox_diagonal();
+    let mut checked = 0;
+    for (origin, limit) in refined.origins().zip(&limits) {
+        let Some(o) = origin else { continue };
+        let Some(d) = eval.eval(o.tri as usize, o.v, o.w) else {
+            continue;
+        };
+        let err = (d[0] - *limit).length();
+        assert!(
+            err <= 1e-12 * diag,
+            "triangle {} at ({}, {}) off by {:e} of the diagonal: {}",
+            o.tri,
+            o.v,
+            o.w,
+            err / diag,
+            eval.describe(o.tri as usize, o.v, o.w)
+        );
+        assert!(d.iter().all(|x| x.is_finite()));
+        checked += 1;
+    }
+    checked
+}
+
+#[test]
+fn evaluator_matches_the_reference_on_every_vertex_kind() {
+    let tetra = example("tetra", None);
+    assert!(check_evaluator(&tetra, 4) > 0);
+    let mut cone = bicone(9);
+    cone.tag_edge(0, 1).unwrap(); // a dart at the apex
+    cone.tag_vertex(12).unwrap(); // a corner on the upper ring
+    for i in 0..9u32 {
+        cone.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap(); // a crease loop
+    }
+    cone.tag_edge(1, 10).unwrap(); // three hard edges at 10: a corner
+    let kinds = cone.vertex_kinds();
+    assert_eq!(
+        (kinds[0], kinds[10], kinds[11]),
+        (VertexKind::Dart, VertexKind::Corner, VertexKind::Crease)
+    );
+    assert!(check_evaluator(&cone, 4) > 0);
+    assert!(check_evaluator(&example("cube", Some(30.0)), 3) > 0);
+    assert!(check_evaluator(&example("open-disk", None), 4) > 0);
+    assert!(check_evaluator(&example("viking", Some(30.0)), 2) > 0);
+}
+
+#[test]
+fn evaluator_matches_the_reference_at_high_valence() {
+    assert!(check_evaluator(&bicone(80), 3) > 0);
+}
+
+#[test]
+fn evaluator_matches_the_reference_on_cgal_meshes() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../.cache/cgal/data/meshes");
+    for (name, angle) in [
+        ("fandisk.off", Some(40.0)),
+        ("pig.off", None),
+        ("cow.off", Some(60.0)),
+    ] {
+        let path = dir.join(name);
+        if !path.exists() {
+            assert!(
+                std::env::var_os("LOOPSURF_REQUIRE_DATA").is_none(),
+                "{} missing",
+                path.display()
+            );
+            return;
+        }
+        let mut net = ControlNet::read(&path).unwrap();
+        if let Some(deg) = angle {
+            net.tag_by_angle(deg).unwrap();
+        }
+        assert!(check_evaluator(&net, 2) > 0);
+    }
+}
+
+/// A closed wavy bicone with two apexes of valence n (see tests/common.rs).
+fn bicone(n: usize) -> ControlNet {
+    use std::f64::consts::TAU;
+    let mut points = vec![DVec3::new(0.1, -0.05, 1.3)];
+    for ring in 0..2 {
+        for i in 0..n {
+            let a = TAU * (i as f64 + 0.5 * ring as f64) / n as f64;
+            let r = 1.0 + 0.15 * (3.0 * a).sin() + 0.05 * ring as f64;
+            let z = 0.4 - 0.8 * ring as f64 + 0.1 * (2.0 * a).cos();
+            points.push(DVec3::new(r * a.cos(), r * a.sin(), z));
+        }
+    }
+    let top = |i: usize| 1 + (i % n) as u32;
+    let low = |i: usize| 1 + n as u32 + (i % n) as u32;
+    let bottom = points.len() as u32;
+    points.push(DVec3::new(-0.05, 0.1, -1.2));
+    let mut tris = Vec::new();
+    for i in 0..n {
+        tris.push([0, top(i), top(i + 1)]);
+        tris.push([top(i), low(i), top(i + 1)]);
+        tris.push([top(i + 1), low(i), low(i + 1)]);
+        tris.push([bottom, low(i + 1), low(i)]);
+    }
+    ControlNet::from_arrays(points, &tris).unwrap()
+}
+
+#[test]
+fn special_matrices_reproduce_one_subdivision_step() {
+    // Around a boundary vertex with two triangles, a dart, and valence 3.
+    let mut cone = bicone(9);
+    cone.tag_edge(0, 1).unwrap();
+    let cases = [
+        (example("open-disk", None), 33u32),
+        (cone, 0),
+        (example("tetra", None), 0),
+    ];
+    for (net, c) in cases {
+        let l1 = net.refine_uniform(1).unwrap().into_net();
+        let l2 = l1.refine_uniform(1).unwrap().into_net();
+        let topo = l1.topology();
+        let (p, q) = {
+            let t = topo.fan(c as usize)[0] as usize;
+            let tri = topo.triangles()[t];
+            let k = tri.iter().position(|&x| x == c).unwrap();
+            (tri[(k + 1) % 3], tri[(k + 2) % 3])
+        };
+        let (patch, k0) = super::special::Cache::default().patch(topo, l1.features(), [c, p, q]);
+        let mid = |a: u32, b: u32| l1.points().len() as u32 + topo.find_edge(a, b).unwrap() as u32;
+        let k1 = super::special::neighbourhood(l2.topology(), c, mid(c, p), mid(c, q));
+        let x0: Vec<DVec3> = k0.iter().map(|&i| l1.points()[i as usize]).collect();
+        let diag = net.bbox_diagonal();
+        for (x, &g) in patch.step(&x0).iter().zip(&k1) {
+            let err = (*x - l2.points()[g as usize]).length();
+            assert!(err < 1e-13 * diag, "vertex {c}: {err:e}");
+        }
+    }
+}
+
+/// Keeps the triangles with a vertex within three edges of `c`, with their
+/// tags; returns the smaller net and the new indices of `keep`.
+fn crop(net: &ControlNet, c: u32, keep: &[u32]) -> (ControlNet, Vec<u32>) {
+    let topo = net.topology();
+    let mut dist = vec![u32::MAX; topo.num_vertices()];
+    dist[c as usize] = 0;
+    let mut queue = std::collections::VecDeque::from([c]);
+    while let Some(v) = queue.pop_front() {
+        for &n in topo.ring(v as usize) {
+            if dist[n as usize] == u32::MAX {
+                dist[n as usize] = dist[v as usize] + 1;
+                queue.push_back(n);
+            }
+        }
+    }
+    let mut label = vec![u32::MAX; topo.num_vertices()];
+    let mut points = Vec::new();
+    let mut tris = Vec::new();
+    for tri in topo.triangles() {
+        if tri.iter().any(|&v| dist[v as usize] <= 3) {
+            tris.push(tri.map(|v| {
+                if label[v as usize] == u32::MAX {
+                    label[v as usize] = points.len() as u32;
+                    points.push(net.points()[v as usize]);
+                }
+                label[v as usize]
+            }));
+        }
+    }
+    // No geometric validation: deep down, round-off makes flat-looking triangles.
+    let small_topo = crate::topology::Topology::new(points.len(), tris).unwrap();
+    let mut features = crate::features::Features::new(&small_topo);
+    for [a, b] in net.hard_edges() {
+        if label[a as usize] != u32::MAX && label[b as usize] != u32::MAX {
+            let _ = features.tag_edge(&small_topo, label[a as usize], label[b as usize]);
+        }
+    }
+    for (v, &l) in label.iter().enumerate() {
+        if net.features().is_tagged_vertex(v) && l != u32::MAX {
+            features.tag_vertex(l).unwrap();
+        }
+    }
+    let small = ControlNet::from_parts(points, small_topo, features);
+    (small, keep.iter().map(|&v| label[v as usize]).collect())
+}
+
+/// Points 2^-1 … 2^-depth from special vertex `c` of control triangle `t`,
+/// along the edge to the next corner and along the diagonal, against the
+/// limit positions of vertices of a refinement cropped around `c`.
+fn check_near_vertex(net: &ControlNet, (t, corner): (usize, usize), depth: u32) {
+    let eval = super::surface::Evaluator::new(net);
+    let diag = net.bbox_diagonal();
+    let tri = net.triangles()[t];
+    let (c, p, q) = (tri[corner], tri[(corner + 1) % 3], tri[(corner + 2) % 3]);
+    let params = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
+    let (pc, pp, pq) = (
+        params[corner],
+        params[(corner + 1) % 3],
+        params[(corner + 2) % 3],
+    );
+    let at = |a: f64, b: f64| {
+        (
+            pc.0 + a * (pp.0 - pc.0) + b * (pq.0 - pc.0),
+            pc.1 + a * (pp.1 - pc.1) + b * (pq.1 - pc.1),
+        )
+    };
+    let (mut fine, mut ids) = crop(net, c, &[c, p, q]);
+    for k in 1..=depth {
+        let step = fine.refine_uniform(1).unwrap().into_net();
+        let topo = fine.topology();
+        let n0 = fine.points().len() as u32;
+        let mid = |a: u32, b: u32| n0 + topo.find_edge(a, b).unwrap() as u32;
+        let (pk, qk) = (mid(ids[0], ids[1]), mid(ids[0], ids[2]));
+        (fine, ids) = crop(&step, ids[0], &[ids[0], pk, qk]);
+        let limits = fine.limit_points();
+        // Along the edge: (2^-k, 0); across: the vertex opposite c beyond pk–qk.
+        let h = (-(k as f64)).exp2();
+        let (v, w) = at(h, 0.0);
+        let along = eval.eval(t, v, w).unwrap()[0];
+        let err = (along - limits[ids[1] as usize]).length();
+        assert!(
+            err <= 1e-12 * diag,
+            "2^-{k} along an edge: off by {:e}",
+            err / diag
+        );
+        let ftopo = fine.topology();
+        let e = ftopo.find_edge(ids[1], ids[2]).unwrap();
+        let far = ftopo.edge_triangles()[e]
+            .iter()
+            .map(|&t| ftopo.triangles()[t as usize])
+            .flat_map(|t| t.into_iter())
+            .find(|&v| v != ids[0] && v != ids[1] && v != ids[2])
+            .unwrap();
+        let (v, w) = at(h, h);
+        let across = eval.eval(t, v, w).unwrap()[0];
+        let err = (across - limits[far as usize]).length();
+        assert!(
+            err <= 1e-12 * diag,
+            "2^-{k} inside: off by {:e}",
+            err / diag
+        );
+    }
+}
+
+#[test]
+fn exact_down_to_2_pow_minus_40_from_special_vertices() {
+    check_near_vertex(&example("tetra", None), (0, 0), 40);
+    let mut cone = bicone(9);
+    cone.tag_edge(0, 1).unwrap();
+    check_near_vertex(&cone, (0, 0), 40);
+    check_near_vertex(&bicone(80), (0, 0), 40);
+    // A corner, an irregular crease vertex and an irregular boundary vertex.
+    let first_at = |net: &ControlNet, kind: VertexKind, valence: Option<usize>| {
+        let kinds = net.vertex_kinds();
+        (0..3 * net.triangles().len())
+            .map(|i| (i / 3, i % 3))
+            .find(|&(t, k)| {
+                let v = net.triangles()[t][k] as usize;
+                kinds[v] == kind && valence.is_none_or(|n| net.topology().valence(v) == n)
+            })
+            .expect("a triangle with that corner")
+    };
+    let cube = example("cube", Some(30.0));
+    check_near_vertex(&cube, first_at(&cube, VertexKind::Corner, None), 40);
+    let mut creased = bicone(9);
+    for i in 0..9u32 {
+        creased.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
+    }
+    let valence = creased.topology().valence(10);
+    assert_ne!(valence, 6);
+    check_near_vertex(
+        &creased,
+        first_at(&creased, VertexKind::Crease, Some(valence)),
+        40,
+    );
+    let disk = example("open-disk", None);
+    check_near_vertex(&disk, first_at(&disk, VertexKind::Crease, Some(3)), 40);
 }

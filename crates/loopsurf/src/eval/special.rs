@@ -1,0 +1,429 @@
+//! Exact, constant-time evaluation next to one special vertex: irregular
+//! valence, dart, crease, corner or boundary, any configuration.
+//!
+//! Seen from a triangle (c, p, q) of the once-refined net whose only special
+//! corner is c, the surface splits into rings: after n more subdivisions the
+//! point lies in one of three regular patches of the ring at level n. The
+//! points they need are a fixed neighbourhood N of c, and one subdivision
+//! step maps N to the same neighbourhood one level down by a local matrix A
+//! (Stam 1998). Rather than writing A per configuration by hand, it is read
+//! off by running the ordinary subdivision ([`crate::refine`]) on a small
+//! local net carrying the real hard edges and corners, with basis vectors
+//! for positions: the masks stay in one place, and every configuration,
+//! including the ones nobody publishes (creases, darts, corners on Loop), is
+//! covered by the same code.
+//!
+//! Constant time: A^n is applied as at most [`POWERS`] products with the
+//! cached powers A^(2^j). Valence 3, whose matrix is not diagonalisable,
+//! needs nothing special. For accuracy near c, everything is done on the
+//! offsets from the limit point L of c: the deflated matrix D = A − 1·l
+//! (l the limit mask of [`crate::rules`]) has only decaying eigenvalues, so relative errors grow
+//! like n·ε instead of swamping the vanishing differences that derivatives
+//! are made of.
+
+use super::affine::{child, Affine};
+use super::{box_spline, regular};
+use crate::features::Features;
+use crate::net::limit_positions;
+use crate::refine::subdivide_points;
+use crate::topology::Topology;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Number of cached powers A^(2^j): rings down to 2^-(2^POWERS) from c.
+pub const POWERS: usize = 11;
+
+/// The evaluation data of one local configuration, shared by every special
+/// corner that looks the same.
+#[derive(Debug)]
+pub struct SpecialPatch {
+    size: usize,
+    /// Limit mask of c over the neighbourhood.
+    limit: Vec<f64>,
+    /// D^(2^j), row-major size × size.
+    powers: Vec<Vec<f64>>,
+    /// The regular patches of the first ring (children 1, 2, 3 of (c, p, q)),
+    /// 12 × size each.
+    band: [Vec<f64>; 3],
+}
+
+/// A special corner's configuration, in canonical local numbering.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+struct Key {
+    /// Local labels of p and q: around a boundary vertex the numbering
+    /// starts at the boundary, so the same net serves several corners.
+    corner: [u32; 2],
+    tris: Vec<[u32; 3]>,
+    hard: Vec<[u32; 2]>,
+    tagged: Vec<u32>,
+}
+
+/// Builds and shares [`SpecialPatch`]es by configuration.
+#[derive(Default)]
+pub struct Cache {
+    patches: HashMap<Key, std::sync::Arc<SpecialPatch>>,
+}
+
+impl Cache {
+    /// The patch of triangle (c, p, q) (counter-clockwise) of a net, and the
+    /// net vertices of its neighbourhood in the patch's order.
+    pub fn patch(
+        &mut self,
+        topo: &Topology,
+        features: &Features,
+        [c, p, q]: [u32; 3],
+    ) -> (std::sync::Arc<SpecialPatch>, Vec<u32>) {
+        let local = LocalNet::around(topo, features, c, p);
+        let key = local.key(p, q);
+        let neighbourhood: Vec<u32> = {
+            let lp = local.label(p);
+            let lq = local.label(q);
+            let lt = local.topo.as_ref().expect("local net");
+            neighbourhood(lt, 0, lp, lq)
+                .iter()
+                .map(|&l| local.global[l as usize])
+                .collect()
+        };
+        let patch = self
+            .patches
+            .entry(key)
+            .or_insert_with(|| std::sync::Arc::new(local.build(p, q)))
+            .clone();
+        (patch, neighbourhood)
+    }
+
+    /// Number of distinct configurations built.
+    pub fn len(&self) -> usize {
+        self.patches.len()
+    }
+}
+
+impl SpecialPatch {
+    /// Evaluates at (s, t) of the triangle (c, p, q), s + t > 0, from the
+    /// neighbourhood's positions: X, Xs, Xt, Xss, Xst, Xtt.
+    pub fn eval(&self, points: &[DVec3], s: f64, t: f64) -> [DVec3; 6] {
+        let n = self.size;
+        let limit: DVec3 = self.limit.iter().zip(points).map(|(w, p)| *w * *p).sum();
+        let mut y: Vec<DVec3> = points.iter().map(|p| *p - limit).collect();
+        // Ring number: scale by 2 until the point lies in the first ring.
+        let (mut s, mut t, mut rings) = (s, t, 0usize);
+        while s + t < 0.5 && rings < (1 << POWERS) - 1 {
+            s *= 2.0;
+            t *= 2.0;
+            rings += 1;
+        }
+        let mut next = vec![DVec3::ZERO; n];
+        for (j, power) in self.powers.iter().enumerate() {
+            if rings >> j & 1 == 1 {
+                for (i, out) in next.iter_mut().enumerate() {
+                    *out = power[i * n..(i + 1) * n]
+                        .iter()
+                        .zip(&y)
+                        .map(|(w, p)| *w * *p)
+                        .sum();
+                }
+                std::mem::swap(&mut y, &mut next);
+            }
+        }
+        let k = if s >= 0.5 {
+            1
+        } else if t >= 0.5 {
+            2
+        } else {
+            3
+        };
+        let map = child(k);
+        let (u, v) = map.apply(s, t);
+        let band = &self.band[k - 1];
+        let control: Vec<DVec3> = (0..12)
+            .map(|r| {
+                band[r * n..(r + 1) * n]
+                    .iter()
+                    .zip(&y)
+                    .map(|(w, p)| *w * *p)
+                    .sum()
+            })
+            .collect();
+        let weights = box_spline::weights(u, v);
+        let mut d: [DVec3; 6] =
+            std::array::from_fn(|i| control.iter().zip(&weights[i]).map(|(p, w)| *w * *p).sum());
+        d[0] += limit;
+        // Back through the child map and the 2^rings scaling.
+        let scale = Affine {
+            m: [[(rings as f64).exp2(), 0.0], [0.0, (rings as f64).exp2()]],
+            b: [0.0, 0.0],
+        };
+        map.after(&scale).pull_back(d)
+    }
+
+    /// One subdivision step of the neighbourhood (for tests).
+    pub fn step(&self, points: &[DVec3]) -> Vec<DVec3> {
+        let n = self.size;
+        let limit = self.limit_point(points);
+        let a = &self.powers[0];
+        (0..n)
+            .map(|i| {
+                a[i * n..(i + 1) * n]
+                    .iter()
+                    .zip(points)
+                    .map(|(w, p)| *w * (*p - limit))
+                    .sum::<DVec3>()
+                    + limit
+            })
+            .collect()
+    }
+
+    /// The limit position of c.
+    pub fn limit_point(&self, points: &[DVec3]) -> DVec3 {
+        self.limit.iter().zip(points).map(|(w, p)| *w * *p).sum()
+    }
+}
+
+/// The neighbourhood N of a corner triangle (c, p, q): c, its ring, then
+/// the rings of p and q, each ring counter-clockwise from a fixed neighbour
+/// (boundary rings as they are, from the boundary).
+pub(crate) fn neighbourhood(topo: &Topology, c: u32, p: u32, q: u32) -> Vec<u32> {
+    let mut out = vec![c];
+    for (v, from) in [(c, p), (p, c), (q, c)] {
+        for x in ring_from(topo, v, from) {
+            if !out.contains(&x) {
+                out.push(x);
+            }
+        }
+    }
+    out
+}
+
+fn ring_from(topo: &Topology, v: u32, from: u32) -> Vec<u32> {
+    let ring = topo.ring(v as usize);
+    if topo.is_boundary_vertex(v as usize) {
+        return ring.to_vec();
+    }
+    let k = ring.iter().position(|&x| x == from).unwrap_or(0);
+    (0..ring.len())
+        .map(|i| ring[(k + i) % ring.len()])
+        .collect()
+}
+
+/// The triangles around c and its neighbours, renumbered canonically from
+/// (c, p): everything the rules of c and its ring read.
+struct LocalNet {
+    /// Local vertex → net vertex.
+    global: Vec<u32>,
+    tris: Vec<[u32; 3]>,
+    hard: Vec<[u32; 2]>,
+    tagged: Vec<u32>,
+    topo: Option<Topology>,
+}
+
+impl LocalNet {
+    fn around(topo: &Topology, features: &Features, c: u32, p: u32) -> LocalNet {
+        // Label c, its ring from p, then each ring vertex's neighbours in
+        // ring order from its smallest-labelled neighbour: a numbering that
+        // depends on the configuration only.
+        let mut label: HashMap<u32, u32> = HashMap::new();
+        let mut global = vec![c];
+        label.insert(c, 0);
+        let ring_c = ring_from(topo, c, p);
+        for &x in &ring_c {
+            label.entry(x).or_insert_with(|| {
+                global.push(x);
+                global.len() as u32 - 1
+            });
+        }
+        for &x in &ring_c {
+            let ring = topo.ring(x as usize);
+            let from = *ring
+                .iter()
+                .min_by_key(|r| label.get(r).copied().unwrap_or(u32::MAX))
+                .unwrap_or(&c);
+            for y in ring_from(topo, x, from) {
+                label.entry(y).or_insert_with(|| {
+                    global.push(y);
+                    global.len() as u32 - 1
+                });
+            }
+        }
+        let inner = 1 + ring_c.len();
+        let mut tris: Vec<[u32; 3]> = Vec::new();
+        for &v in global[..inner].iter() {
+            for &t in topo.fan(v as usize) {
+                let l = topo.triangles()[t as usize].map(|g| label[&g]);
+                // Rotate so the smallest label leads; then sort: canonical.
+                let k = (0..3).min_by_key(|&i| l[i]).unwrap_or(0);
+                let r = [l[k], l[(k + 1) % 3], l[(k + 2) % 3]];
+                if !tris.contains(&r) {
+                    tris.push(r);
+                }
+            }
+        }
+        tris.sort_unstable();
+        let is_inner = |l: u32| (l as usize) < inner;
+        let mut hard = Vec::new();
+        for t in &tris {
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                if a < b && (is_inner(a) || is_inner(b)) {
+                    let e = topo.find_edge(global[a as usize], global[b as usize]);
+                    if e.is_some_and(|e| features.is_hard_edge(e)) {
+                        hard.push([a, b]);
+                    }
+                }
+            }
+        }
+        hard.sort_unstable();
+        hard.dedup();
+        let tagged = (0..inner as u32)
+            .filter(|&l| features.is_tagged_vertex(global[l as usize] as usize))
+            .collect();
+        let local_topo = Topology::new(global.len(), tris.clone()).ok();
+        LocalNet {
+            global,
+            tris,
+            hard,
+            tagged,
+            topo: local_topo,
+        }
+    }
+
+    fn label(&self, g: u32) -> u32 {
+        self.global.iter().position(|&x| x == g).unwrap_or(0) as u32
+    }
+
+    fn key(&self, p: u32, q: u32) -> Key {
+        Key {
+            corner: [self.label(p), self.label(q)],
+            tris: self.tris.clone(),
+            hard: self.hard.clone(),
+            tagged: self.tagged.clone(),
+        }
+    }
+
+    /// The matrices of this configuration, for the corner triangle (c, p, q).
+    fn build(&self, p: u32, q: u32) -> SpecialPatch {
+        let topo = self
+            .topo
+            .as_ref()
+            .expect("the local net of a manifold net is manifold");
+        let mut features = Features::new(topo);
+        for &[a, b] in &self.hard {
+            let _ = features.tag_edge(topo, a, b);
+        }
+        for &v in &self.tagged {
+            let _ = features.tag_vertex(v);
+        }
+        let (lp, lq) = (self.label(p), self.label(q));
+        let n0 = self.global.len();
+        // S: one subdivision step of the local net as a matrix, and the limit
+        // masks, three basis vectors at a time (x, y, z).
+        let fine = topo.num_vertices() + topo.num_edges();
+        let mut s = vec![0.0; fine * n0];
+        let mut limit_row = vec![0.0; n0];
+        for first in (0..n0).step_by(3) {
+            let basis: Vec<DVec3> = (0..n0)
+                .map(|j| {
+                    let mut e = DVec3::ZERO;
+                    if j >= first && j < first + 3 {
+                        e[j - first] = 1.0;
+                    }
+                    e
+                })
+                .collect();
+            for (i, x) in subdivide_points(topo, &features, &basis).iter().enumerate() {
+                for d in 0..3 {
+                    if first + d < n0 {
+                        s[i * n0 + first + d] = x[d];
+                    }
+                }
+            }
+            let c_limit = limit_positions(topo, &features, &basis)[0];
+            for d in 0..3 {
+                if first + d < n0 {
+                    limit_row[first + d] = c_limit[d];
+                }
+            }
+        }
+        let fine_topo = topo.refined();
+        let fine_features = features.refined(topo);
+        let mid =
+            |a: u32, b: u32| n0 as u32 + topo.find_edge(a, b).expect("edge of (c, p, q)") as u32;
+        let coarse_n = neighbourhood(topo, 0, lp, lq);
+        let fine_n = neighbourhood(&fine_topo, 0, mid(0, lp), mid(0, lq));
+        assert_eq!(coarse_n.len(), fine_n.len(), "neighbourhoods of one shape");
+        let size = coarse_n.len();
+        // Rows of S restricted to the neighbourhood; the rules never read
+        // outside it (checked).
+        let restrict = |row: &[f64]| -> Vec<f64> {
+            let picked: Vec<f64> = coarse_n.iter().map(|&j| row[j as usize]).collect();
+            let outside = row.iter().map(|w| w.abs()).sum::<f64>()
+                - picked.iter().map(|w| w.abs()).sum::<f64>();
+            assert!(
+                outside.abs() < 1e-12,
+                "a rule reads outside the neighbourhood {coarse_n:?}: {row:?}"
+            );
+            picked
+        };
+        let a: Vec<f64> = fine_n
+            .iter()
+            .flat_map(|&i| restrict(&s[i as usize * n0..(i as usize + 1) * n0]))
+            .collect();
+        // Band patches: children 1..3 of the local (c, p, q).
+        let t = self
+            .tris
+            .iter()
+            .position(|&t| t == [0, lp, lq])
+            .expect("(c, p, q) in the local net");
+        let kinds = fine_features.vertex_kinds(&fine_topo);
+        let band: [Vec<f64>; 3] = std::array::from_fn(|k| {
+            let stencil = regular::stencil(&fine_topo, &fine_features, &kinds, 4 * t + k + 1)
+                .expect("the first ring around a special vertex is regular");
+            stencil
+                .iter()
+                .flat_map(|src| {
+                    let row = |i: u32| &s[i as usize * n0..(i as usize + 1) * n0];
+                    let full: Vec<f64> = match *src {
+                        regular::Source::Vertex(i) => row(i).to_vec(),
+                        regular::Source::Phantom { a, b, minus } => (0..n0)
+                            .map(|j| row(a)[j] + row(b)[j] - row(minus)[j])
+                            .collect(),
+                    };
+                    restrict(&full)
+                })
+                .collect()
+        });
+        // Limit mask of c: the left eigenvector of A for eigenvalue 1.
+        let limit = restrict(&limit_row);
+        let mut deflated = a;
+        for i in 0..size {
+            for j in 0..size {
+                deflated[i * size + j] -= limit[j];
+            }
+        }
+        let mut powers = vec![deflated];
+        for j in 1..POWERS {
+            let last = &powers[j - 1];
+            powers.push(matmul(last, last, size));
+        }
+        SpecialPatch {
+            size,
+            limit,
+            powers,
+            band,
+        }
+    }
+}
+
+fn matmul(a: &[f64], b: &[f64], n: usize) -> Vec<f64> {
+    let mut c = vec![0.0; n * n];
+    for i in 0..n {
+        for k in 0..n {
+            let aik = a[i * n + k];
+            if aik != 0.0 {
+                for j in 0..n {
+                    c[i * n + j] += aik * b[k * n + j];
+                }
+            }
+        }
+    }
+    c
+}
