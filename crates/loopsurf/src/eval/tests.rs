@@ -379,3 +379,127 @@ fn exact_down_to_2_pow_minus_40_from_special_vertices() {
     let disk = example("open-disk", None);
     check_near_vertex(&disk, first_at(&disk, VertexKind::Crease, Some(3)), 40);
 }
+
+/// First and second derivatives against central differences of the
+/// evaluator's own positions (and first derivatives), inside regular and
+/// special patches, with creases, corners, darts and boundaries.
+#[test]
+fn derivatives_match_central_differences() {
+    let mut cone = bicone(9);
+    cone.tag_edge(0, 1).unwrap();
+    for i in 0..9u32 {
+        cone.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
+    }
+    for net in [
+        cone,
+        example("tetra", None),
+        example("cube", Some(30.0)),
+        example("open-disk", None),
+        bicone(80),
+    ] {
+        let eval = super::surface::Evaluator::new(&net);
+        let h: f64 = 1e-6;
+        let scale = net.bbox_diagonal();
+        for t in 0..net.triangles().len() {
+            for &(v, w) in &[
+                (0.2, 0.3),
+                (0.01, 0.02),
+                (0.6, 0.15),
+                (0.3, 0.6),
+                (0.26, 0.26),
+                (0.0004, 0.0003),
+            ] {
+                let at = |v: f64, w: f64| eval.eval(t, v, w).unwrap();
+                let d = at(v, w);
+                let hv = h.min(v / 2.0);
+                let hw = h.min(w / 2.0);
+                let dv = (at(v + hv, w)[0] - at(v - hv, w)[0]) / (2.0 * hv);
+                let dw = (at(v, w + hw)[0] - at(v, w - hw)[0]) / (2.0 * hw);
+                let dvv = (at(v + hv, w)[1] - at(v - hv, w)[1]) / (2.0 * hv);
+                let dvw = (at(v, w + hw)[1] - at(v, w - hw)[1]) / (2.0 * hw);
+                let dww = (at(v, w + hw)[2] - at(v, w - hw)[2]) / (2.0 * hw);
+                let first = d[1].length().max(d[2].length()).max(scale);
+                let second = d[3]
+                    .length()
+                    .max(d[4].length())
+                    .max(d[5].length())
+                    .max(scale);
+                for (name, got, want, size) in [
+                    ("Xv", d[1], dv, first),
+                    ("Xw", d[2], dw, first),
+                    ("Xvv", d[3], dvv, second),
+                    ("Xvw", d[4], dvw, second),
+                    ("Xww", d[5], dww, second),
+                ] {
+                    let err = (got - want).length() / size;
+                    // Central differences straddle patch seams and, next to a special
+                    // vertex, fast-growing second derivatives: 1e-5 leaves room for
+                    // that while any wrong chain rule is off by order one.
+                    assert!(
+                        err < 1e-5,
+                        "{name} of triangle {t} at ({v}, {w}): {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The same point of a control edge evaluated from its two triangles: the
+/// same position, and across smooth edges the same normal.
+#[test]
+fn neighbours_agree_along_shared_edges() {
+    let mut cone = bicone(9);
+    cone.tag_edge(0, 1).unwrap();
+    for i in 0..9u32 {
+        cone.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
+    }
+    let params = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
+    for net in [
+        cone,
+        example("tetra", None),
+        example("cube", Some(30.0)),
+        example("open-disk", None),
+        bicone(80),
+    ] {
+        let eval = super::surface::Evaluator::new(&net);
+        let topo = net.topology();
+        let diag = net.bbox_diagonal();
+        for (e, &[a, b]) in topo.edges().iter().enumerate() {
+            let [t0, t1] = topo.edge_triangles()[e];
+            if t1 == crate::topology::NONE {
+                continue;
+            }
+            let at = |t: u32, x: f64| {
+                let c = topo.triangles()[t as usize];
+                let (pa, pb) = (
+                    params[c.iter().position(|&v| v == a).unwrap()],
+                    params[c.iter().position(|&v| v == b).unwrap()],
+                );
+                eval.eval(
+                    t as usize,
+                    pa.0 + x * (pb.0 - pa.0),
+                    pa.1 + x * (pb.1 - pa.1),
+                )
+                .unwrap()
+            };
+            for x in [0.5f64.powi(30), 0.1, 0.25, 0.5, 0.7, 1.0 - 0.5f64.powi(20)] {
+                let (d0, d1) = (at(t0, x), at(t1, x));
+                assert!(
+                    (d0[0] - d1[0]).length() <= 1e-13 * diag,
+                    "edge ({a}, {b}) at {x}"
+                );
+                if !net.features().is_hard_edge(e) {
+                    let (n0, n1) = (
+                        d0[1].cross(d0[2]).normalize(),
+                        d1[1].cross(d1[2]).normalize(),
+                    );
+                    assert!(
+                        (n0 - n1).length() < 1e-9,
+                        "normals across ({a}, {b}) at {x}: {n0} {n1}"
+                    );
+                }
+            }
+        }
+    }
+}
