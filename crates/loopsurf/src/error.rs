@@ -80,6 +80,20 @@ pub enum Error {
         "inconsistently oriented neighbours: triangles {tris:?} both traverse edge {a} -> {b}"
     )]
     InconsistentOrientation { a: u32, b: u32, tris: [u32; 2] },
+    /// An evaluation point that is not a point of its triangle: NaN, or
+    /// outside beyond round-off (v < 0, w < 0 or v + w > 1).
+    #[error("point (v, w) = ({v}, {w}) of triangle {tri}: {reason}")]
+    BadParameter {
+        tri: usize,
+        v: f64,
+        w: f64,
+        reason: &'static str,
+    },
+    /// A query that needs a tangent plane where the surface has none that
+    /// loopsurf can give exactly yet (a corner, or exactly at a crease, dart
+    /// or corner vertex).
+    #[error("no tangent plane at vertex {vertex} ({kind} vertex) of the refined net")]
+    NoTangentPlane { vertex: u32, kind: &'static str },
     /// A caller-supplied argument that makes no sense (unknown edge, bad level count, ...).
     #[error("{0}")]
     InvalidArgument(String),

@@ -4,8 +4,9 @@
 //! Layering (one-way, like OpenSubdiv's Sdc → Vtr → Far):
 //! [`rules`] (pure masks) → [`topology`] (connectivity only) →
 //! [`features`] (hard edges and vertex kinds) → [`net`] (positions) →
-//! [`refine`] (uniform subdivision). File formats live in [`io`], built-in
-//! shapes in [`examples`].
+//! [`refine`] (uniform subdivision) and evaluation ([`surface`], exact at any
+//! (triangle, v, w)). File formats live in [`io`], built-in shapes in
+//! [`examples`].
 
 pub mod error;
 pub(crate) mod eval;
@@ -15,6 +16,7 @@ pub mod io;
 pub mod net;
 pub mod refine;
 pub mod rules;
+pub mod surface;
 pub mod topology;
 
 pub use error::{Element, Error, Result};
@@ -22,4 +24,5 @@ pub use features::{Features, VertexKind};
 pub use glam::DVec3;
 pub use net::ControlNet;
 pub use refine::{Refinement, SurfacePoint};
+pub use surface::{Curvature, Evaluation, Surface};
 pub use topology::Topology;

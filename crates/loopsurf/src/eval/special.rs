@@ -157,6 +157,7 @@ impl SpecialPatch {
     }
 
     /// One subdivision step of the neighbourhood (for tests).
+    #[cfg(test)]
     pub fn step(&self, points: &[DVec3]) -> Vec<DVec3> {
         let n = self.size;
         let limit = self.limit_point(points);

@@ -67,6 +67,7 @@ impl Evaluator {
     }
 
     /// Which kind of patch serves (v, w) of `tri` (for test messages).
+    #[cfg(test)]
     pub fn describe(&self, tri: usize, v: f64, w: f64) -> String {
         let (k, _) = child_containing(v, w);
         let t = 4 * tri + k;
@@ -90,21 +91,27 @@ impl Evaluator {
         self.configurations
     }
 
-    /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of control triangle `tri`; `None`
-    /// exactly at a special vertex.
-    pub fn eval(&self, tri: usize, v: f64, w: f64) -> Option<[DVec3; 6]> {
+    /// The once-refined net the patches live on.
+    pub fn fine(&self) -> &ControlNet {
+        &self.fine
+    }
+
+    /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of control triangle `tri`, or,
+    /// exactly at a special vertex, that vertex (of the refined net) and its
+    /// exact limit position: the parametrisation is singular there.
+    pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
         let (k, to_child) = child_containing(v, w);
         let t = 4 * tri + k;
-        let (s, u) = to_child.apply(v, w);
         let points = self.fine.points();
         match &self.patches[t] {
             Patch::Regular(stencil) => {
                 let control: Vec<DVec3> = stencil.iter().map(|p| p.position(points)).collect();
+                let (s, u) = to_child.apply(v, w);
                 let weights = box_spline::weights(s, u);
                 let d = std::array::from_fn(|i| {
                     control.iter().zip(&weights[i]).map(|(p, w)| *w * *p).sum()
                 });
-                Some(to_child.pull_back(d))
+                Ok(to_child.pull_back(d))
             }
             Patch::Special {
                 corner,
@@ -113,12 +120,24 @@ impl Evaluator {
             } => {
                 let map = rotation(*corner as usize).after(&to_child);
                 let (s, u) = map.apply(v, w);
-                if s + u <= 0.0 {
-                    return None;
-                }
                 let local: Vec<DVec3> = around.iter().map(|&i| points[i as usize]).collect();
-                Some(map.pull_back(patch.eval(&local, s, u)))
+                if s + u <= 0.0 {
+                    return Err(AtVertex {
+                        vertex: around[0],
+                        limit: patch.limit_point(&local),
+                    });
+                }
+                Ok(map.pull_back(patch.eval(&local, s, u)))
             }
         }
     }
+}
+
+/// An evaluation that landed exactly on a special vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtVertex {
+    /// The vertex in the once-refined net (control vertices keep their index).
+    pub vertex: u32,
+    /// Its exact limit position.
+    pub limit: DVec3,
 }

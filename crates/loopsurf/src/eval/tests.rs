@@ -112,7 +112,7 @@ fn check_evaluator(net: &ControlNet, levels: u32) -> usize {
     let mut checked = 0;
     for (origin, limit) in refined.origins().zip(&limits) {
         let Some(o) = origin else { continue };
-        let Some(d) = eval.eval(o.tri as usize, o.v, o.w) else {
+        let Ok(d) = eval.eval(o.tri as usize, o.v, o.w) else {
             continue;
         };
         let err = (d[0] - *limit).length();

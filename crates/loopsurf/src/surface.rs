@@ -1,0 +1,352 @@
+//! The limit surface as a CAD kernel sees it: points, derivatives, normals
+//! and curvature at any (triangle, v, w), exactly and in constant time.
+//!
+//! Parameterisation (DESIGN.md): triangle t = (c0, c1, c2) of the control
+//! net, weights (1 − v − w, v, w); derivatives are with respect to v and w.
+//! A built surface is immutable, `Send` and `Sync`.
+
+use crate::error::{Error, Result};
+use crate::eval::surface::Evaluator;
+use crate::net::{ControlNet, Tangents};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// How far outside its triangle a point may lie and still be accepted (then
+/// clamped): round-off, not extrapolation.
+pub const PARAMETER_TOLERANCE: f64 = 1e-12;
+
+/// The limit surface of a control net.
+pub struct Surface {
+    net: ControlNet,
+    evaluator: Evaluator,
+}
+
+/// Position and derivatives at one point, in DESIGN.md's record order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Evaluation {
+    pub x: DVec3,
+    pub xv: DVec3,
+    pub xw: DVec3,
+    pub xvv: DVec3,
+    pub xvw: DVec3,
+    pub xww: DVec3,
+    /// The point is exactly a special vertex (irregular, dart, crease or
+    /// corner). The position is its exact limit position; the
+    /// parametrisation is singular there (first derivatives vanish below
+    /// valence 6 and diverge above), so all derivatives are reported as zero.
+    pub at_special_vertex: bool,
+}
+
+impl Evaluation {
+    /// X Xv Xw Xvv Xvw Xww as 18 numbers (EGADS `EG_evaluate` order).
+    pub fn record(&self) -> [f64; 18] {
+        let mut out = [0.0; 18];
+        for (i, d) in [self.x, self.xv, self.xw, self.xvv, self.xvw, self.xww]
+            .iter()
+            .enumerate()
+        {
+            out[3 * i..3 * i + 3].copy_from_slice(&d.to_array());
+        }
+        out
+    }
+}
+
+/// Principal curvatures and directions (EGADS `EG_curvature` order), with
+/// mean and Gaussian curvature. Curvatures are positive where the surface
+/// bends away from its outward normal: a sphere of radius r has 1/r.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Curvature {
+    pub k1: f64,
+    pub dir1: DVec3,
+    pub k2: f64,
+    pub dir2: DVec3,
+    pub mean: f64,
+    pub gaussian: f64,
+    /// False exactly at a special vertex, where curvature is unbounded
+    /// (valence 3 and ≥ 7) or depends on the direction (valence 4 and 5), or
+    /// where the tangent plane degenerates; the numbers are then zero.
+    pub reliable: bool,
+}
+
+impl Curvature {
+    /// k1 dir1 k2 dir2 as 8 numbers.
+    pub fn record(&self) -> [f64; 8] {
+        let mut out = [0.0; 8];
+        out[0] = self.k1;
+        out[1..4].copy_from_slice(&self.dir1.to_array());
+        out[4] = self.k2;
+        out[5..8].copy_from_slice(&self.dir2.to_array());
+        out
+    }
+}
+
+impl Surface {
+    /// Precomputes every triangle's evaluation data (the net is copied).
+    pub fn new(net: &ControlNet) -> Surface {
+        Surface {
+            net: net.clone(),
+            evaluator: Evaluator::new(net),
+        }
+    }
+
+    /// The control net.
+    pub fn net(&self) -> &ControlNet {
+        &self.net
+    }
+
+    /// Number of distinct special-vertex configurations precomputed.
+    pub fn configurations(&self) -> usize {
+        self.evaluator.configurations()
+    }
+
+    /// Position and first and second derivatives at (v, w) of triangle `tri`.
+    pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<Evaluation> {
+        let (v, w) = self.check(tri, v, w)?;
+        Ok(match self.evaluator.eval(tri, v, w) {
+            Ok([x, xv, xw, xvv, xvw, xww]) => Evaluation {
+                x,
+                xv,
+                xw,
+                xvv,
+                xvw,
+                xww,
+                at_special_vertex: false,
+            },
+            Err(at) => Evaluation {
+                x: at.limit,
+                xv: DVec3::ZERO,
+                xw: DVec3::ZERO,
+                xvv: DVec3::ZERO,
+                xvw: DVec3::ZERO,
+                xww: DVec3::ZERO,
+                at_special_vertex: true,
+            },
+        })
+    }
+
+    /// Evaluates many points in parallel; fails on the first bad query.
+    pub fn eval_many(&self, queries: &[(u32, f64, f64)]) -> Result<Vec<Evaluation>> {
+        queries
+            .par_iter()
+            .map(|&(t, v, w)| self.eval(t as usize, v, w))
+            .collect()
+    }
+
+    /// The unit outward normal. At a smooth special vertex it comes from the
+    /// limit tangent masks; at crease, dart and corner vertices themselves
+    /// it is [`Error::NoTangentPlane`] for now.
+    pub fn normal(&self, tri: usize, v: f64, w: f64) -> Result<DVec3> {
+        let e = self.eval(tri, v, w)?;
+        if !e.at_special_vertex {
+            return Ok(e.xv.cross(e.xw).normalize_or_zero());
+        }
+        let (v, w) = self.check(tri, v, w)?;
+        let vertex = match self.evaluator.eval(tri, v, w) {
+            Err(at) => at.vertex,
+            Ok(_) => unreachable!("a special vertex stays one"),
+        };
+        match self.evaluator.fine().limit_tangents(vertex as usize)? {
+            Tangents::Surface(t1, t2) => Ok(t1.cross(t2).normalize_or_zero()),
+            Tangents::Crease(_) => Err(Error::NoTangentPlane {
+                vertex,
+                kind: "crease",
+            }),
+            Tangents::Dart => Err(Error::NoTangentPlane {
+                vertex,
+                kind: "dart",
+            }),
+            Tangents::Corner => Err(Error::NoTangentPlane {
+                vertex,
+                kind: "corner",
+            }),
+        }
+    }
+
+    /// Principal curvatures and directions, mean and Gaussian curvature.
+    pub fn curvature(&self, tri: usize, v: f64, w: f64) -> Result<Curvature> {
+        let e = self.eval(tri, v, w)?;
+        Ok(curvature_of(&e))
+    }
+
+    /// Validates a query; clamps round-off excursions into the triangle.
+    fn check(&self, tri: usize, v: f64, w: f64) -> Result<(f64, f64)> {
+        let bad = |reason| Err(Error::BadParameter { tri, v, w, reason });
+        if tri >= self.net.triangles().len() {
+            return Err(Error::InvalidArgument(format!(
+                "triangle {tri}: out of range (the net has {} triangles)",
+                self.net.triangles().len()
+            )));
+        }
+        if !v.is_finite() || !w.is_finite() {
+            return bad("not a finite number");
+        }
+        let tol = PARAMETER_TOLERANCE;
+        if v < -tol || w < -tol || v + w > 1.0 + tol {
+            return bad("outside the triangle (v ≥ 0, w ≥ 0, v + w ≤ 1)");
+        }
+        let (v, w) = (v.max(0.0), w.max(0.0));
+        let excess = (v + w - 1.0).max(0.0);
+        Ok((v - excess / 2.0, w - excess / 2.0))
+    }
+}
+
+/// Curvature from the first and second fundamental forms.
+fn curvature_of(e: &Evaluation) -> Curvature {
+    let unreliable = Curvature {
+        k1: 0.0,
+        dir1: DVec3::ZERO,
+        k2: 0.0,
+        dir2: DVec3::ZERO,
+        mean: 0.0,
+        gaussian: 0.0,
+        reliable: false,
+    };
+    let cross = e.xv.cross(e.xw);
+    if e.at_special_vertex || cross.length() <= 1e-300 {
+        return unreliable;
+    }
+    let n = cross.normalize();
+    let (ee, ff, gg) = (e.xv.dot(e.xv), e.xv.dot(e.xw), e.xw.dot(e.xw));
+    // Sign: positive where the surface bends away from the outward normal.
+    let (l, m, nn) = (-e.xvv.dot(n), -e.xvw.dot(n), -e.xww.dot(n));
+    let det = ee * gg - ff * ff;
+    let gaussian = (l * nn - m * m) / det;
+    let mean = (ee * nn - 2.0 * ff * m + gg * l) / (2.0 * det);
+    let disc = (mean * mean - gaussian).max(0.0).sqrt();
+    let (k1, k2) = (mean + disc, mean - disc);
+    // Principal direction for k: (II − k I) (a, b) = 0.
+    let direction = |k: f64, other: DVec3| {
+        let (a11, a12, a22) = (l - k * ee, m - k * ff, nn - k * gg);
+        let (a, b) = if a11.abs() + a12.abs() >= a12.abs() + a22.abs() {
+            (-a12, a11)
+        } else {
+            (a22, -a12)
+        };
+        let d = a * e.xv + b * e.xw;
+        if d.length() > 1e-300 && disc > 1e-12 * mean.abs().max(1e-300) {
+            d.normalize()
+        } else {
+            // Umbilic: every direction is principal; pick one orthogonal pair.
+            other
+        }
+    };
+    let dir1 = direction(k1, e.xv.normalize());
+    let dir2 = {
+        let d = direction(k2, n.cross(dir1));
+        if d == dir1 {
+            n.cross(dir1)
+        } else {
+            d
+        }
+    };
+    Curvature {
+        k1,
+        dir1,
+        k2,
+        dir2,
+        mean,
+        gaussian,
+        reliable: true,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere() -> ControlNet {
+        let ex = crate::examples::sphere();
+        ControlNet::from_arrays(ex.points, &ex.tris).unwrap()
+    }
+
+    #[test]
+    fn bad_queries_are_errors() {
+        let s = Surface::new(&sphere());
+        assert!(matches!(
+            s.eval(9999, 0.1, 0.1),
+            Err(Error::InvalidArgument(_))
+        ));
+        assert!(matches!(
+            s.eval(0, f64::NAN, 0.1),
+            Err(Error::BadParameter { .. })
+        ));
+        assert!(matches!(
+            s.eval(0, -0.01, 0.1),
+            Err(Error::BadParameter { .. })
+        ));
+        assert!(matches!(
+            s.eval(0, 0.6, 0.5),
+            Err(Error::BadParameter { .. })
+        ));
+        assert!(s.eval(0, -1e-14, 1.0 + 1e-14).is_ok());
+    }
+
+    #[test]
+    fn no_nan_at_any_corner() {
+        let mut net = crate::examples::by_name("cube")
+            .map(|e| ControlNet::from_arrays(e.points, &e.tris).unwrap())
+            .unwrap();
+        net.tag_by_angle(30.0).unwrap();
+        for net in [sphere(), net] {
+            let s = Surface::new(&net);
+            for t in 0..net.triangles().len() {
+                for (v, w) in [
+                    (0.0, 0.0),
+                    (1.0, 0.0),
+                    (0.0, 1.0),
+                    (0.5, 0.5),
+                    (1.0 / 3.0, 1.0 / 3.0),
+                ] {
+                    let e = s.eval(t, v, w).unwrap();
+                    assert!(e.record().iter().all(|x| x.is_finite()));
+                    let k = s.curvature(t, v, w).unwrap();
+                    assert!(k.record().iter().all(|x| x.is_finite()) && k.mean.is_finite());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_surface_is_send_and_sync() {
+        fn check<T: Send + Sync>() {}
+        check::<Surface>();
+    }
+
+    #[test]
+    fn sphere_like_surface_has_positive_curvature_and_outward_normals() {
+        let net = sphere();
+        let s = Surface::new(&net);
+        for t in 0..net.triangles().len() {
+            let e = s.eval(t, 0.3, 0.3).unwrap();
+            let n = s.normal(t, 0.3, 0.3).unwrap();
+            assert!(n.dot(e.x) > 0.9 * e.x.length());
+            let k = s.curvature(t, 0.3, 0.3).unwrap();
+            assert!(
+                k.reliable && k.k1 >= k.k2 && k.k2 > 0.5 && k.k1 < 2.0,
+                "{k:?}"
+            );
+            assert!((k.dir1.dot(n)).abs() < 1e-12 && (k.dir2.dot(n)).abs() < 1e-12);
+            assert!((k.gaussian - k.k1 * k.k2).abs() < 1e-12);
+        }
+        // At the twelve valence-5 vertices: exact limit position, normal from
+        // the tangent masks, curvature flagged.
+        let topo = net.topology();
+        for v in (0..net.points().len()).filter(|&v| topo.valence(v) == 5) {
+            let t = topo.fan(v)[0] as usize;
+            let k = topo.triangles()[t]
+                .iter()
+                .position(|&c| c as usize == v)
+                .unwrap();
+            let (pv, pw) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k];
+            let e = s.eval(t, pv, pw).unwrap();
+            assert!(e.at_special_vertex);
+            assert!((e.x - net.limit_points()[v]).length() < 1e-15);
+            let n = s.normal(t, pv, pw).unwrap();
+            assert!(
+                n.dot(e.x.normalize()) > 1.0 - 1e-12,
+                "symmetric vertex: radial normal"
+            );
+            assert!(!s.curvature(t, pv, pw).unwrap().reliable);
+        }
+    }
+}
