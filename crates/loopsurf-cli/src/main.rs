@@ -1,6 +1,7 @@
 //! The `loopsurf` command: translates arguments into library calls and
 //! library results into text. No geometry lives here.
 
+mod cmd_eval;
 mod cmd_hard_edges;
 mod cmd_info;
 mod cmd_refine;
@@ -25,6 +26,8 @@ enum Command {
     HardEdges(cmd_hard_edges::Args),
     /// Uniform Loop refinement; the output format follows OUT's extension.
     Refine(cmd_refine::Args),
+    /// Exact evaluation: reads `tri v w` lines on stdin, writes X Xv Xw Xvv Xvw Xww (18 numbers) per line.
+    Eval(cmd_eval::Args),
 }
 
 /// Runs `write` against a buffered, locked stdout. A reader that stops
@@ -71,6 +74,7 @@ fn main() -> ExitCode {
         Command::Info(args) => cmd_info::run(args),
         Command::HardEdges(args) => cmd_hard_edges::run(args),
         Command::Refine(args) => cmd_refine::run(args),
+        Command::Eval(args) => cmd_eval::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -160,3 +160,64 @@ fn bad_input_exits_2_with_one_line() {
         "tags_bad.txt:1",
     );
 }
+
+fn loopsurf_with_stdin(args: &[&str], stdin: &str) -> Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_loopsurf"))
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn eval_reads_back_bit_exact() {
+    let queries = "0 0.25 0.25\n# a comment\n\n7 0 0\n12 0.1 0.8\n3 1 0\n";
+    let out = loopsurf_with_stdin(
+        &["eval", "--example", "cube", "--hard-angle", "30"],
+        queries,
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let ex = loopsurf::examples::cube();
+    let mut net = loopsurf::ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+    net.tag_by_angle(30.0).unwrap();
+    let surface = loopsurf::Surface::new(&net);
+    let expected = [
+        (0, 0.25, 0.25),
+        (7, 0.0, 0.0),
+        (12, 0.1, 0.8),
+        (3, 1.0, 0.0),
+    ];
+    let lines: Vec<String> = text(&out.stdout).lines().map(String::from).collect();
+    assert_eq!(lines.len(), expected.len());
+    for (line, &(t, v, w)) in lines.iter().zip(&expected) {
+        let numbers: Vec<f64> = line
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let record = surface.eval(t, v, w).unwrap().record();
+        assert_eq!(numbers.len(), 18);
+        for (a, b) in numbers.iter().zip(record) {
+            assert_eq!(a.to_bits(), b.to_bits());
+        }
+    }
+}
+
+#[test]
+fn eval_rejects_bad_lines_by_number() {
+    let out = loopsurf_with_stdin(&["eval", "--example", "sphere"], "0 0.1 0.1\n1 x 0\n");
+    assert_clean_failure(&out, "line 2");
+    let out = loopsurf_with_stdin(&["eval", "--example", "sphere"], "0 0.1 0.1\n\n1 0.9 0.9\n");
+    assert_clean_failure(&out, "line 3");
+    let out = loopsurf_with_stdin(&["eval", "--example", "sphere"], "99999 0.1 0.1\n");
+    assert_clean_failure(&out, "line 1");
+}
