@@ -6,6 +6,8 @@
 //! counter-clockwise: x4 across c1–c2, x5 x6 around c2, x7 across c2–c0,
 //! x8 x9 around c0, x10 across c0–c1, x11 x12 around c1.
 
+use glam::DVec3;
+
 /// Seed 000 eq. (6), times 12: row i holds the coefficients of control point
 /// i on the monomials of eq. (5).
 #[rustfmt::skip]
@@ -24,13 +26,18 @@ const PHI: [[f64; 15]; 12] = [
     [0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 1., 2., 0., 0., 0.],
 ];
 
-/// Weights of the twelve control points for X, Xv, Xw, Xvv, Xvw, Xww at
-/// (v, w), in DESIGN.md's evaluation-record order.
-pub fn weights(v: f64, w: f64) -> [[f64; 12]; 6] {
-    // The monomials of eq. (5) and their derivatives, differentiated by hand.
+/// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of the patch with these control
+/// points. (Weighting the points is faster here than folding them into
+/// polynomial coefficients first: the scalar weights vectorise.)
+pub fn eval(control: &[DVec3; 12], v: f64, w: f64) -> [DVec3; 6] {
+    weights(v, w).map(|row| control.iter().zip(&row).map(|(p, w)| *w * *p).sum())
+}
+
+/// The monomials of eq. (5) and their derivatives, differentiated by hand.
+fn monomials(v: f64, w: f64) -> [[f64; 15]; 6] {
     let (v2, w2, v3, w3) = (v * v, w * w, v * v * v, w * w * w);
     #[rustfmt::skip]
-    let monomials: [[f64; 15]; 6] = [
+    let m = [
         [1., v, w, v2, v * w, w2, v3, v2 * w, v * w2, w3, v2 * v2, v3 * w, v2 * w2, v * w3, w2 * w2],
         [0., 1., 0., 2. * v, w, 0., 3. * v2, 2. * v * w, w2, 0., 4. * v3, 3. * v2 * w, 2. * v * w2, w3, 0.],
         [0., 0., 1., 0., v, 2. * w, 0., v2, 2. * v * w, 3. * w2, 0., v3, 2. * v2 * w, 3. * v * w2, 4. * w3],
@@ -38,8 +45,14 @@ pub fn weights(v: f64, w: f64) -> [[f64; 12]; 6] {
         [0., 0., 0., 0., 1., 0., 0., 2. * v, 2. * w, 0., 0., 3. * v2, 4. * v * w, 3. * w2, 0.],
         [0., 0., 0., 0., 0., 2., 0., 0., 2. * v, 6. * w, 0., 0., 2. * v2, 6. * v * w, 12. * w2],
     ];
+    m
+}
+
+/// Weights of the twelve control points for X, Xv, Xw, Xvv, Xvw, Xww at
+/// (v, w), in DESIGN.md's evaluation-record order.
+pub fn weights(v: f64, w: f64) -> [[f64; 12]; 6] {
     let mut out = [[0.0; 12]; 6];
-    for (d, mono) in monomials.iter().enumerate() {
+    for (d, mono) in monomials(v, w).iter().enumerate() {
         for (i, row) in PHI.iter().enumerate() {
             out[d][i] = row.iter().zip(mono).map(|(a, b)| a * b).sum::<f64>() / 12.0;
         }
@@ -90,6 +103,17 @@ mod tests {
             ] {
                 assert!((got - want).abs() < 1e-9, "point {i}: {got} vs {want}");
             }
+        }
+    }
+
+    #[test]
+    fn eval_agrees_with_the_weights() {
+        let control: [DVec3; 12] = std::array::from_fn(|i| DVec3::new(i as f64, (i * i) as f64 * 0.1, (i as f64).sin()));
+        let (v, w) = (0.21, 0.37);
+        let wts = weights(v, w);
+        for (d, got) in eval(&control, v, w).iter().enumerate() {
+            let want: DVec3 = control.iter().zip(&wts[d]).map(|(p, w)| *w * *p).sum();
+            assert!((*got - want).length() < 1e-13);
         }
     }
 

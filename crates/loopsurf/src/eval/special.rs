@@ -75,15 +75,9 @@ impl Cache {
     ) -> (std::sync::Arc<SpecialPatch>, Vec<u32>) {
         let local = LocalNet::around(topo, features, c, p);
         let key = local.key(p, q);
-        let neighbourhood: Vec<u32> = {
-            let lp = local.label(p);
-            let lq = local.label(q);
-            let lt = local.topo.as_ref().expect("local net");
-            neighbourhood(lt, 0, lp, lq)
-                .iter()
-                .map(|&l| local.global[l as usize])
-                .collect()
-        };
+        // The local net reproduces the rings of c, p and q, so the
+        // neighbourhood can be read off the net itself.
+        let neighbourhood = neighbourhood(topo, c, p, q);
         let patch = self
             .patches
             .entry(key)
@@ -100,30 +94,16 @@ impl Cache {
 
 impl SpecialPatch {
     /// Evaluates at (s, t) of the triangle (c, p, q), s + t > 0, from the
-    /// neighbourhood's positions: X, Xs, Xt, Xss, Xst, Xtt.
-    pub fn eval(&self, points: &[DVec3], s: f64, t: f64) -> [DVec3; 6] {
+    /// positions of the neighbourhood `around` (indices into `points`):
+    /// X, Xs, Xt, Xss, Xst, Xtt.
+    pub fn eval(&self, points: &[DVec3], around: &[u32], s: f64, t: f64) -> [DVec3; 6] {
         let n = self.size;
-        let limit: DVec3 = self.limit.iter().zip(points).map(|(w, p)| *w * *p).sum();
-        let mut y: Vec<DVec3> = points.iter().map(|p| *p - limit).collect();
         // Ring number: scale by 2 until the point lies in the first ring.
         let (mut s, mut t, mut rings) = (s, t, 0usize);
         while s + t < 0.5 && rings < (1 << POWERS) - 1 {
             s *= 2.0;
             t *= 2.0;
             rings += 1;
-        }
-        let mut next = vec![DVec3::ZERO; n];
-        for (j, power) in self.powers.iter().enumerate() {
-            if rings >> j & 1 == 1 {
-                for (i, out) in next.iter_mut().enumerate() {
-                    *out = power[i * n..(i + 1) * n]
-                        .iter()
-                        .zip(&y)
-                        .map(|(w, p)| *w * *p)
-                        .sum();
-                }
-                std::mem::swap(&mut y, &mut next);
-            }
         }
         let k = if s >= 0.5 {
             1
@@ -135,19 +115,44 @@ impl SpecialPatch {
         let map = child(k);
         let (u, v) = map.apply(s, t);
         let band = &self.band[k - 1];
-        let control: Vec<DVec3> = (0..12)
-            .map(|r| {
-                band[r * n..(r + 1) * n]
-                    .iter()
-                    .zip(&y)
-                    .map(|(w, p)| *w * *p)
-                    .sum()
-            })
-            .collect();
-        let weights = box_spline::weights(u, v);
-        let mut d: [DVec3; 6] =
-            std::array::from_fn(|i| control.iter().zip(&weights[i]).map(|(p, w)| *w * *p).sum());
-        d[0] += limit;
+        let d = if rings == 0 {
+            // In the first ring the band rows apply to the points themselves.
+            let control: [DVec3; 12] = std::array::from_fn(|r| {
+                band[r * n..(r + 1) * n].iter().zip(around).map(|(w, &i)| *w * points[i as usize]).sum()
+            });
+            box_spline::eval(&control, u, v)
+        } else {
+            // Offsets from the limit point, pushed `rings` levels down with
+            // the cached powers; two scratch vectors on the stack for the
+            // usual valences.
+            const INLINE: usize = 24;
+            let mut inline = [DVec3::ZERO; 2 * INLINE];
+            let mut heap = Vec::new();
+            let scratch: &mut [DVec3] = if n <= INLINE {
+                &mut inline[..2 * n]
+            } else {
+                heap.resize(2 * n, DVec3::ZERO);
+                &mut heap
+            };
+            let (mut y, mut next) = scratch.split_at_mut(n);
+            let limit = self.limit_point(points, around);
+            for (out, &i) in y.iter_mut().zip(around) {
+                *out = points[i as usize] - limit;
+            }
+            for (j, power) in self.powers.iter().enumerate() {
+                if rings >> j & 1 == 1 {
+                    for (i, out) in next.iter_mut().enumerate() {
+                        *out = power[i * n..(i + 1) * n].iter().zip(y.iter()).map(|(w, p)| *w * *p).sum();
+                    }
+                    std::mem::swap(&mut y, &mut next);
+                }
+            }
+            let control: [DVec3; 12] =
+                std::array::from_fn(|r| band[r * n..(r + 1) * n].iter().zip(y.iter()).map(|(w, p)| *w * *p).sum());
+            let mut d = box_spline::eval(&control, u, v);
+            d[0] += limit;
+            d
+        };
         // Back through the child map and the 2^rings scaling.
         let scale = Affine {
             m: [[(rings as f64).exp2(), 0.0], [0.0, (rings as f64).exp2()]],
@@ -160,7 +165,7 @@ impl SpecialPatch {
     #[cfg(test)]
     pub fn step(&self, points: &[DVec3]) -> Vec<DVec3> {
         let n = self.size;
-        let limit = self.limit_point(points);
+        let limit: DVec3 = self.limit.iter().zip(points).map(|(w, p)| *w * *p).sum();
         let a = &self.powers[0];
         (0..n)
             .map(|i| {
@@ -174,9 +179,9 @@ impl SpecialPatch {
             .collect()
     }
 
-    /// The limit position of c.
-    pub fn limit_point(&self, points: &[DVec3]) -> DVec3 {
-        self.limit.iter().zip(points).map(|(w, p)| *w * *p).sum()
+    /// The limit position of c from the positions of its neighbourhood.
+    pub fn limit_point(&self, points: &[DVec3], around: &[u32]) -> DVec3 {
+        self.limit.iter().zip(around).map(|(w, &i)| *w * points[i as usize]).sum()
     }
 }
 
@@ -214,7 +219,6 @@ struct LocalNet {
     tris: Vec<[u32; 3]>,
     hard: Vec<[u32; 2]>,
     tagged: Vec<u32>,
-    topo: Option<Topology>,
 }
 
 impl LocalNet {
@@ -277,13 +281,11 @@ impl LocalNet {
         let tagged = (0..inner as u32)
             .filter(|&l| features.is_tagged_vertex(global[l as usize] as usize))
             .collect();
-        let local_topo = Topology::new(global.len(), tris.clone()).ok();
         LocalNet {
             global,
             tris,
             hard,
             tagged,
-            topo: local_topo,
         }
     }
 
@@ -302,9 +304,7 @@ impl LocalNet {
 
     /// The matrices of this configuration, for the corner triangle (c, p, q).
     fn build(&self, p: u32, q: u32) -> SpecialPatch {
-        let topo = self
-            .topo
-            .as_ref()
+        let topo = &Topology::new(self.global.len(), self.tris.clone())
             .expect("the local net of a manifold net is manifold");
         let mut features = Features::new(topo);
         for &[a, b] in &self.hard {

@@ -105,12 +105,9 @@ impl Evaluator {
         let points = self.fine.points();
         match &self.patches[t] {
             Patch::Regular(stencil) => {
-                let control: Vec<DVec3> = stencil.iter().map(|p| p.position(points)).collect();
+                let control: [DVec3; 12] = std::array::from_fn(|i| stencil[i].position(points));
                 let (s, u) = to_child.apply(v, w);
-                let weights = box_spline::weights(s, u);
-                let d = std::array::from_fn(|i| {
-                    control.iter().zip(&weights[i]).map(|(p, w)| *w * *p).sum()
-                });
+                let d = box_spline::eval(&control, s, u);
                 Ok(to_child.pull_back(d))
             }
             Patch::Special {
@@ -120,14 +117,13 @@ impl Evaluator {
             } => {
                 let map = rotation(*corner as usize).after(&to_child);
                 let (s, u) = map.apply(v, w);
-                let local: Vec<DVec3> = around.iter().map(|&i| points[i as usize]).collect();
                 if s + u <= 0.0 {
                     return Err(AtVertex {
                         vertex: around[0],
-                        limit: patch.limit_point(&local),
+                        limit: patch.limit_point(points, around),
                     });
                 }
-                Ok(map.pull_back(patch.eval(&local, s, u)))
+                Ok(map.pull_back(patch.eval(points, around, s, u)))
             }
         }
     }
