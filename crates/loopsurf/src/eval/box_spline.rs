@@ -27,10 +27,21 @@ const PHI: [[f64; 15]; 12] = [
 ];
 
 /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of the patch with these control
-/// points. (Weighting the points is faster here than folding them into
-/// polynomial coefficients first: the scalar weights vectorise.)
+/// points. (For a one-off patch, weighting the points is faster than
+/// folding them into polynomial coefficients first: the weights vectorise.)
 pub fn eval(control: &[DVec3; 12], v: f64, w: f64) -> [DVec3; 6] {
     weights(v, w).map(|row| control.iter().zip(&row).map(|(p, w)| *w * *p).sum())
+}
+
+/// The patch as a polynomial: its coefficients on the monomials of eq. (5).
+/// Worth storing for patches evaluated many times.
+pub fn coefficients(control: &[DVec3; 12]) -> [DVec3; 15] {
+    std::array::from_fn(|j| control.iter().zip(&PHI).map(|(x, row)| row[j] / 12.0 * *x).sum())
+}
+
+/// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of a patch given by [`coefficients`].
+pub fn eval_coefficients(coefficients: &[DVec3; 15], v: f64, w: f64) -> [DVec3; 6] {
+    monomials(v, w).map(|m| m.iter().zip(coefficients).map(|(m, c)| *m * *c).sum())
 }
 
 /// The monomials of eq. (5) and their derivatives, differentiated by hand.
@@ -107,13 +118,13 @@ mod tests {
     }
 
     #[test]
-    fn eval_agrees_with_the_weights() {
+    fn coefficients_agree_with_the_weights() {
         let control: [DVec3; 12] = std::array::from_fn(|i| DVec3::new(i as f64, (i * i) as f64 * 0.1, (i as f64).sin()));
-        let (v, w) = (0.21, 0.37);
-        let wts = weights(v, w);
-        for (d, got) in eval(&control, v, w).iter().enumerate() {
-            let want: DVec3 = control.iter().zip(&wts[d]).map(|(p, w)| *w * *p).sum();
-            assert!((*got - want).length() < 1e-13);
+        let c = coefficients(&control);
+        for (v, w) in [(0.21, 0.37), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
+            for (got, want) in eval_coefficients(&c, v, w).iter().zip(eval(&control, v, w)) {
+                assert!((*got - want).length() < 1e-13);
+            }
         }
     }
 

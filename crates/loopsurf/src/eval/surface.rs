@@ -12,7 +12,8 @@ use std::sync::Arc;
 /// How one triangle of the once-refined net is evaluated.
 #[derive(Debug)]
 enum Patch {
-    Regular([regular::Source; 12]),
+    /// A box spline, stored as its polynomial coefficients.
+    Regular([DVec3; 15]),
     /// Corner `corner` is special; `points` is its neighbourhood.
     Special {
         corner: u8,
@@ -40,7 +41,8 @@ impl Evaluator {
         let patches = (0..topo.num_triangles())
             .map(|t| {
                 if let Some(s) = regular::stencil(topo, features, &kinds, t) {
-                    return Patch::Regular(s);
+                    let control = s.map(|p| p.position(fine.points()));
+                    return Patch::Regular(box_spline::coefficients(&control));
                 }
                 // Child k < 3 of a control triangle has the control vertex
                 // at its corner k; the centre child is always regular.
@@ -74,7 +76,7 @@ impl Evaluator {
         let c = self.fine.triangles()[t];
         let kinds = self.fine.vertex_kinds();
         let what = match &self.patches[t] {
-            Patch::Regular(s) => format!("regular {s:?}"),
+            Patch::Regular(_) => "regular".to_string(),
             Patch::Special { corner, points, .. } => {
                 format!("special corner {corner}, neighbourhood {points:?}")
             }
@@ -104,10 +106,9 @@ impl Evaluator {
         let t = 4 * tri + k;
         let points = self.fine.points();
         match &self.patches[t] {
-            Patch::Regular(stencil) => {
-                let control: [DVec3; 12] = std::array::from_fn(|i| stencil[i].position(points));
+            Patch::Regular(coefficients) => {
                 let (s, u) = to_child.apply(v, w);
-                let d = box_spline::eval(&control, s, u);
+                let d = box_spline::eval_coefficients(coefficients, s, u);
                 Ok(to_child.pull_back(d))
             }
             Patch::Special {
