@@ -7,15 +7,21 @@ use loopsurf::{ControlNet, Surface};
 use std::path::PathBuf;
 
 fn mesh(name: &str) -> Option<ControlNet> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../.cache/cgal/data/meshes").join(name);
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../.cache/cgal/data/meshes")
+        .join(name);
     ControlNet::read(&path)
-        .map_err(|e| eprintln!("eval bench skipped: {e} (scripts/test.sh extracts the CGAL meshes)"))
+        .map_err(|e| {
+            eprintln!("eval bench skipped: {e} (scripts/test.sh extracts the CGAL meshes)")
+        })
         .ok()
 }
 
 /// A fixed pseudo-random sequence (no dependency, same points every run).
 fn lcg(state: &mut u64) -> f64 {
-    *state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    *state = state
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     (*state >> 11) as f64 / (1u64 << 53) as f64
 }
 
@@ -29,13 +35,18 @@ fn point_in_triangle(state: &mut u64) -> (f64, f64) {
 }
 
 fn eval(c: &mut Criterion) {
-    let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let single = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
     for name in ["pig.off", "bunny00.off"] {
         let Some(net) = mesh(name) else { return };
         let ntris = net.triangles().len();
         let mut group = c.benchmark_group(format!("eval_{name}"));
         group.sample_size(10);
-        group.bench_function("build", |b| b.iter(|| single.install(|| Surface::new(&net))));
+        group.bench_function("build", |b| {
+            b.iter(|| single.install(|| Surface::new(&net)))
+        });
         let surface = Surface::new(&net);
         let mut state = 42u64;
         // (i) one point per triangle, triangles in random order.
@@ -59,7 +70,10 @@ fn eval(c: &mut Criterion) {
                 (t, v, w)
             })
             .collect();
-        for (label, queries) in [("one_per_triangle_random", &one), ("sixteen_per_triangle", &sixteen)] {
+        for (label, queries) in [
+            ("one_per_triangle_random", &one),
+            ("sixteen_per_triangle", &sixteen),
+        ] {
             group.throughput(Throughput::Elements(queries.len() as u64));
             group.bench_function(label, |b| {
                 b.iter(|| {

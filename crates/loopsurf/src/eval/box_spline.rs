@@ -36,7 +36,13 @@ pub fn eval(control: &[DVec3; 12], v: f64, w: f64) -> [DVec3; 6] {
 /// The patch as a polynomial: its coefficients on the monomials of eq. (5).
 /// Worth storing for patches evaluated many times.
 pub fn coefficients(control: &[DVec3; 12]) -> [DVec3; 15] {
-    std::array::from_fn(|j| control.iter().zip(&PHI).map(|(x, row)| row[j] / 12.0 * *x).sum())
+    std::array::from_fn(|j| {
+        control
+            .iter()
+            .zip(&PHI)
+            .map(|(x, row)| row[j] / 12.0 * *x)
+            .sum()
+    })
 }
 
 /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of a patch given by [`coefficients`].
@@ -119,7 +125,8 @@ mod tests {
 
     #[test]
     fn coefficients_agree_with_the_weights() {
-        let control: [DVec3; 12] = std::array::from_fn(|i| DVec3::new(i as f64, (i * i) as f64 * 0.1, (i as f64).sin()));
+        let control: [DVec3; 12] =
+            std::array::from_fn(|i| DVec3::new(i as f64, (i * i) as f64 * 0.1, (i as f64).sin()));
         let c = coefficients(&control);
         for (v, w) in [(0.21, 0.37), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
             for (got, want) in eval_coefficients(&c, v, w).iter().zip(eval(&control, v, w)) {

@@ -118,7 +118,11 @@ impl SpecialPatch {
         let d = if rings == 0 {
             // In the first ring the band rows apply to the points themselves.
             let control: [DVec3; 12] = std::array::from_fn(|r| {
-                band[r * n..(r + 1) * n].iter().zip(around).map(|(w, &i)| *w * points[i as usize]).sum()
+                band[r * n..(r + 1) * n]
+                    .iter()
+                    .zip(around)
+                    .map(|(w, &i)| *w * points[i as usize])
+                    .sum()
             });
             box_spline::eval(&control, u, v)
         } else {
@@ -142,13 +146,22 @@ impl SpecialPatch {
             for (j, power) in self.powers.iter().enumerate() {
                 if rings >> j & 1 == 1 {
                     for (i, out) in next.iter_mut().enumerate() {
-                        *out = power[i * n..(i + 1) * n].iter().zip(y.iter()).map(|(w, p)| *w * *p).sum();
+                        *out = power[i * n..(i + 1) * n]
+                            .iter()
+                            .zip(y.iter())
+                            .map(|(w, p)| *w * *p)
+                            .sum();
                     }
                     std::mem::swap(&mut y, &mut next);
                 }
             }
-            let control: [DVec3; 12] =
-                std::array::from_fn(|r| band[r * n..(r + 1) * n].iter().zip(y.iter()).map(|(w, p)| *w * *p).sum());
+            let control: [DVec3; 12] = std::array::from_fn(|r| {
+                band[r * n..(r + 1) * n]
+                    .iter()
+                    .zip(y.iter())
+                    .map(|(w, p)| *w * *p)
+                    .sum()
+            });
             let mut d = box_spline::eval(&control, u, v);
             d[0] += limit;
             d
@@ -181,7 +194,11 @@ impl SpecialPatch {
 
     /// The limit position of c from the positions of its neighbourhood.
     pub fn limit_point(&self, points: &[DVec3], around: &[u32]) -> DVec3 {
-        self.limit.iter().zip(around).map(|(w, &i)| *w * points[i as usize]).sum()
+        self.limit
+            .iter()
+            .zip(around)
+            .map(|(w, &i)| *w * points[i as usize])
+            .sum()
     }
 }
 
@@ -225,57 +242,53 @@ impl LocalNet {
     fn around(topo: &Topology, features: &Features, c: u32, p: u32) -> LocalNet {
         // Label c, its ring from p, then each ring vertex's neighbours in
         // ring order from its smallest-labelled neighbour: a numbering that
-        // depends on the configuration only.
-        let mut label: HashMap<u32, u32> = HashMap::new();
+        // depends on the configuration only. A few dozen vertices: a linear
+        // search beats hashing.
         let mut global = vec![c];
-        label.insert(c, 0);
+        let label_of =
+            |global: &[u32], g: u32| global.iter().position(|&x| x == g).map(|l| l as u32);
         let ring_c = ring_from(topo, c, p);
         for &x in &ring_c {
-            label.entry(x).or_insert_with(|| {
+            if label_of(&global, x).is_none() {
                 global.push(x);
-                global.len() as u32 - 1
-            });
+            }
         }
         for &x in &ring_c {
             let ring = topo.ring(x as usize);
             let from = *ring
                 .iter()
-                .min_by_key(|r| label.get(r).copied().unwrap_or(u32::MAX))
+                .min_by_key(|&&r| label_of(&global, r).unwrap_or(u32::MAX))
                 .unwrap_or(&c);
             for y in ring_from(topo, x, from) {
-                label.entry(y).or_insert_with(|| {
+                if label_of(&global, y).is_none() {
                     global.push(y);
-                    global.len() as u32 - 1
-                });
+                }
             }
         }
         let inner = 1 + ring_c.len();
-        let mut tris: Vec<[u32; 3]> = Vec::new();
-        for &v in global[..inner].iter() {
-            for &t in topo.fan(v as usize) {
-                let l = topo.triangles()[t as usize].map(|g| label[&g]);
-                // Rotate so the smallest label leads; then sort: canonical.
-                let k = (0..3).min_by_key(|&i| l[i]).unwrap_or(0);
-                let r = [l[k], l[(k + 1) % 3], l[(k + 2) % 3]];
-                if !tris.contains(&r) {
-                    tris.push(r);
+        let is_inner = |l: u32| (l as usize) < inner;
+        let mut fan: Vec<u32> = global[..inner]
+            .iter()
+            .flat_map(|&v| topo.fan(v as usize).iter().copied())
+            .collect();
+        fan.sort_unstable();
+        fan.dedup();
+        let mut tris: Vec<[u32; 3]> = Vec::with_capacity(fan.len());
+        let mut hard = Vec::new();
+        for &t in &fan {
+            let g = topo.triangles()[t as usize];
+            let l = g.map(|g| label_of(&global, g).expect("every corner is labelled"));
+            for (i, &e) in topo.triangle_edges()[t as usize].iter().enumerate() {
+                let (a, b) = (l[i].min(l[(i + 1) % 3]), l[i].max(l[(i + 1) % 3]));
+                if (is_inner(a) || is_inner(b)) && features.is_hard_edge(e as usize) {
+                    hard.push([a, b]);
                 }
             }
+            // Rotate so the smallest label leads; then sort: canonical.
+            let k = (0..3).min_by_key(|&i| l[i]).unwrap_or(0);
+            tris.push([l[k], l[(k + 1) % 3], l[(k + 2) % 3]]);
         }
         tris.sort_unstable();
-        let is_inner = |l: u32| (l as usize) < inner;
-        let mut hard = Vec::new();
-        for t in &tris {
-            for i in 0..3 {
-                let (a, b) = (t[i], t[(i + 1) % 3]);
-                if a < b && (is_inner(a) || is_inner(b)) {
-                    let e = topo.find_edge(global[a as usize], global[b as usize]);
-                    if e.is_some_and(|e| features.is_hard_edge(e)) {
-                        hard.push([a, b]);
-                    }
-                }
-            }
-        }
         hard.sort_unstable();
         hard.dedup();
         let tagged = (0..inner as u32)
