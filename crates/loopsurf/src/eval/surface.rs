@@ -10,6 +10,9 @@ use glam::DVec3;
 use std::sync::Arc;
 
 /// How one triangle of the once-refined net is evaluated.
+// Nearly every patch is regular: storing its coefficients inline keeps an
+// evaluation to one memory region, where boxing them would add a pointer chase.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug)]
 enum Patch {
     /// A box spline, stored as its polynomial coefficients.
