@@ -503,3 +503,71 @@ fn neighbours_agree_along_shared_edges() {
         }
     }
 }
+
+/// Every corner, edge midpoint and centre of every triangle of real meshes
+/// (hard edges, darts, corners, boundaries): finite records, no NaN, and
+/// normals wherever the surface has a tangent plane.
+#[test]
+fn no_nan_anywhere_on_cgal_meshes() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../.cache/cgal/data/meshes");
+    for (name, angle) in [("fandisk.off", Some(40.0)), ("pig.off", None)] {
+        let path = dir.join(name);
+        if !path.exists() {
+            assert!(
+                std::env::var_os("LOOPSURF_REQUIRE_DATA").is_none(),
+                "{} missing",
+                path.display()
+            );
+            return;
+        }
+        let mut net = ControlNet::read(&path).unwrap();
+        if let Some(deg) = angle {
+            net.tag_by_angle(deg).unwrap();
+        }
+        let surface = crate::Surface::new(&net);
+        for t in 0..net.triangles().len() {
+            for (v, w) in [
+                (0.0, 0.0),
+                (1.0, 0.0),
+                (0.0, 1.0),
+                (0.5, 0.0),
+                (0.5, 0.5),
+                (0.0, 0.5),
+                (1.0 / 3.0, 1.0 / 3.0),
+            ] {
+                let e = surface.eval(t, v, w).unwrap();
+                assert!(
+                    e.record().iter().all(|x| x.is_finite()),
+                    "{name} triangle {t} at ({v}, {w})"
+                );
+                let k = surface.curvature(t, v, w).unwrap();
+                assert!(
+                    k.record().iter().all(|x| x.is_finite())
+                        && k.mean.is_finite()
+                        && k.gaussian.is_finite()
+                );
+                if let Ok(n) = surface.normal(t, v, w) {
+                    assert!(
+                        (n.length() - 1.0).abs() < 1e-12,
+                        "{name} triangle {t} at ({v}, {w}): normal {n}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Triangles whose three edges are all hard (a lone triangle, a tetrahedron
+/// with every edge a crease): every kind of corner at once.
+#[test]
+fn all_hard_triangles() {
+    let lone =
+        ControlNet::from_arrays(vec![DVec3::ZERO, DVec3::X, DVec3::Y], &[[0, 1, 2]]).unwrap();
+    let mut tetra = example("tetra", None);
+    tetra.tag_by_angle(1.0).unwrap();
+    let mut strip = example("open-disk", None);
+    strip.tag_by_angle(0.0).unwrap();
+    for net in [lone, tetra, strip] {
+        assert!(check_evaluator(&net, 3) > 0);
+    }
+}
