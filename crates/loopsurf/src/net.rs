@@ -291,9 +291,10 @@ pub enum Tangents {
     /// Crease vertex: the tangent of the crease curve, from one crease
     /// neighbour to the other in ring order.
     Crease(DVec3),
-    /// A dart has a tangent plane, but no tangent mask gives it: the ½ ½
-    /// rule on its hard edge breaks the symmetry eq. 4 relies on, so it comes
-    /// from the eigenstructure of the dart's local matrix (the evaluator's job).
+    /// A dart has a tangent plane, but no closed-form mask gives it: the ½ ½
+    /// rule on its hard edge breaks the symmetry eq. 4 relies on. The
+    /// evaluator computes it from the dart's local matrix
+    /// ([`crate::Surface::normal`]).
     Dart,
     /// A corner has no tangent plane.
     Corner,

@@ -7,7 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::eval::surface::Evaluator;
-use crate::net::{ControlNet, Tangents};
+use crate::net::ControlNet;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -132,34 +132,16 @@ impl Surface {
             .collect()
     }
 
-    /// The unit outward normal. At a smooth special vertex it comes from the
-    /// limit tangent masks; at crease, dart and corner vertices themselves
-    /// it is [`Error::NoTangentPlane`] for now.
+    /// The unit outward normal. Exactly at a special vertex it is the normal
+    /// of the limit surface there, from the tangent masks of the triangle's
+    /// sector: one-sided at creases and corners, where each sector has its
+    /// own tangent plane.
     pub fn normal(&self, tri: usize, v: f64, w: f64) -> Result<DVec3> {
-        let e = self.eval(tri, v, w)?;
-        if !e.at_special_vertex {
-            return Ok(e.xv.cross(e.xw).normalize_or_zero());
-        }
         let (v, w) = self.check(tri, v, w)?;
-        let vertex = match self.evaluator.eval(tri, v, w) {
-            Err(at) => at.vertex,
-            Ok(_) => unreachable!("a special vertex stays one"),
-        };
-        match self.evaluator.fine().limit_tangents(vertex as usize)? {
-            Tangents::Surface(t1, t2) => Ok(t1.cross(t2).normalize_or_zero()),
-            Tangents::Crease(_) => Err(Error::NoTangentPlane {
-                vertex,
-                kind: "crease",
-            }),
-            Tangents::Dart => Err(Error::NoTangentPlane {
-                vertex,
-                kind: "dart",
-            }),
-            Tangents::Corner => Err(Error::NoTangentPlane {
-                vertex,
-                kind: "corner",
-            }),
-        }
+        Ok(match self.evaluator.eval(tri, v, w) {
+            Ok(d) => d[1].cross(d[2]).normalize_or_zero(),
+            Err(at) => at.normal,
+        })
     }
 
     /// Principal curvatures and directions, mean and Gaussian curvature.

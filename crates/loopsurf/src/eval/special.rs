@@ -45,6 +45,8 @@ pub struct SpecialPatch {
     /// The regular patches of the first ring (children 1, 2, 3 of (c, p, q)),
     /// 12 × size each.
     band: [Vec<f64>; 3],
+    /// Tangent masks of the sector at c (see [`sector_tangents`]).
+    tangents: [Vec<f64>; 2],
 }
 
 /// A special corner's configuration, in canonical local numbering.
@@ -192,6 +194,18 @@ impl SpecialPatch {
             .collect()
     }
 
+    /// The outward unit normal at c of the sector (c, p, q): exact, from the
+    /// sector's tangent masks.
+    pub fn normal_at_vertex(&self, points: &[DVec3], around: &[u32]) -> DVec3 {
+        let [t1, t2] = self.tangents.each_ref().map(|row| {
+            row.iter()
+                .zip(around)
+                .map(|(w, &i)| *w * points[i as usize])
+                .sum::<DVec3>()
+        });
+        t1.cross(t2).normalize_or_zero()
+    }
+
     /// The limit position of c from the positions of its neighbourhood.
     pub fn limit_point(&self, points: &[DVec3], around: &[u32]) -> DVec3 {
         self.limit
@@ -332,7 +346,8 @@ impl LocalNet {
         // masks, three basis vectors at a time (x, y, z).
         let fine = topo.num_vertices() + topo.num_edges();
         let mut s = vec![0.0; fine * n0];
-        let mut limit_row = vec![0.0; n0];
+        // Limit masks of c, p and q (rows of the limit operator).
+        let mut limit_rows = vec![vec![0.0; n0]; 3];
         for first in (0..n0).step_by(3) {
             let basis: Vec<DVec3> = (0..n0)
                 .map(|j| {
@@ -350,10 +365,12 @@ impl LocalNet {
                     }
                 }
             }
-            let c_limit = limit_positions(topo, &features, &basis)[0];
-            for d in 0..3 {
-                if first + d < n0 {
-                    limit_row[first + d] = c_limit[d];
+            let limits = limit_positions(topo, &features, &basis);
+            for (row, v) in limit_rows.iter_mut().zip([0, lp, lq]) {
+                for d in 0..3 {
+                    if first + d < n0 {
+                        row[first + d] = limits[v as usize][d];
+                    }
                 }
             }
         }
@@ -406,7 +423,7 @@ impl LocalNet {
                 .collect()
         });
         // Limit mask of c: the left eigenvector of A for eigenvalue 1.
-        let limit = restrict(&limit_row);
+        let limit = restrict(&limit_rows[0]);
         let mut deflated = a;
         for i in 0..size {
             for j in 0..size {
@@ -418,13 +435,63 @@ impl LocalNet {
             let last = &powers[j - 1];
             powers.push(matmul(last, last, size));
         }
+        // D^32 drives the tangent iteration: high enough to converge in a
+        // few hundred steps even at valence 80, low enough that no mode of
+        // the sector (eigenvalues down to 1/4) underflows between the
+        // normalisations.
+        let tangents = sector_tangents(
+            &powers[5],
+            restrict(&limit_rows[1]),
+            restrict(&limit_rows[2]),
+            size,
+        );
         SpecialPatch {
             size,
             limit,
             powers,
             band,
+            tangents,
         }
     }
+}
+
+/// Tangent masks of the sector (c, p, q) at c: a basis of the row space that
+/// the chords from c's limit to the limits of p and q, pushed n levels down,
+/// tend to as n grows. Orthogonal iteration with a high power D^m of the
+/// deflated matrix; QR with a positive diagonal keeps the orientation of
+/// (chord to p, chord to q), so t₁ × t₂ is the outward normal. Exact to
+/// round-off: each step shrinks the error by (λ₃/λ₂)^m.
+fn sector_tangents(power: &[f64], to_p: Vec<f64>, to_q: Vec<f64>, n: usize) -> [Vec<f64>; 2] {
+    let times = |row: &[f64]| -> Vec<f64> {
+        (0..n)
+            .map(|j| (0..n).map(|i| row[i] * power[i * n + j]).sum())
+            .collect()
+    };
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let orthonormal = |a: Vec<f64>, b: Vec<f64>| {
+        let na = dot(&a, &a).sqrt();
+        let a: Vec<f64> = a.iter().map(|x| x / na).collect();
+        let proj = dot(&a, &b);
+        let b: Vec<f64> = b.iter().zip(&a).map(|(y, x)| y - proj * x).collect();
+        let nb = dot(&b, &b).sqrt();
+        let b: Vec<f64> = b.iter().map(|y| y / nb).collect();
+        [a, b]
+    };
+    let mut basis = orthonormal(to_p, to_q);
+    for _ in 0..4096 {
+        let next = orthonormal(times(&basis[0]), times(&basis[1]));
+        let change = next[0]
+            .iter()
+            .zip(&basis[0])
+            .chain(next[1].iter().zip(&basis[1]))
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        basis = next;
+        if change < 1e-15 {
+            break;
+        }
+    }
+    basis
 }
 
 fn matmul(a: &[f64], b: &[f64], n: usize) -> Vec<f64> {

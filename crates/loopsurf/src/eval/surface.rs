@@ -96,11 +96,6 @@ impl Evaluator {
         self.configurations
     }
 
-    /// The once-refined net the patches live on.
-    pub fn fine(&self) -> &ControlNet {
-        &self.fine
-    }
-
     /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of control triangle `tri`, or,
     /// exactly at a special vertex, that vertex (of the refined net) and its
     /// exact limit position: the parametrisation is singular there.
@@ -125,6 +120,7 @@ impl Evaluator {
                     return Err(AtVertex {
                         vertex: around[0],
                         limit: patch.limit_point(points, around),
+                        normal: patch.normal_at_vertex(points, around),
                     });
                 }
                 Ok(map.pull_back(patch.eval(points, around, s, u)))
@@ -140,4 +136,6 @@ pub struct AtVertex {
     pub vertex: u32,
     /// Its exact limit position.
     pub limit: DVec3,
+    /// The outward unit normal there of the sector the triangle lies in.
+    pub normal: DVec3,
 }

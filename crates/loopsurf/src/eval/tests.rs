@@ -571,3 +571,64 @@ fn all_hard_triangles() {
         assert!(check_evaluator(&net, 3) > 0);
     }
 }
+
+/// The normal exactly at a special vertex is the limit of the normals of
+/// its sector as points approach it.
+#[test]
+fn vertex_normals_are_limits_of_sector_normals() {
+    let mut dart = bicone(9);
+    dart.tag_edge(0, 1).unwrap();
+    let mut creased = bicone(9);
+    for i in 0..9u32 {
+        creased.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
+    }
+    let cube = example("cube", Some(30.0));
+    let disk = example("open-disk", None);
+    let corner_of_kind = |net: &ControlNet, kind: VertexKind| {
+        let kinds = net.vertex_kinds();
+        (0..3 * net.triangles().len())
+            .map(|i| (i / 3, i % 3))
+            .find(|&(t, k)| {
+                kinds[net.triangles()[t][k] as usize] == kind
+                    && net.topology().valence(net.triangles()[t][k] as usize) != 6
+            })
+            .unwrap()
+    };
+    let cases = [
+        (example("tetra", None), (0, 0)),
+        (dart.clone(), (0, 0)),
+        (
+            creased.clone(),
+            corner_of_kind(&creased, VertexKind::Crease),
+        ),
+        (cube.clone(), corner_of_kind(&cube, VertexKind::Corner)),
+        (disk.clone(), corner_of_kind(&disk, VertexKind::Crease)),
+    ];
+    let params = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
+    for (net, (t, corner)) in cases {
+        let surface = crate::Surface::new(&net);
+        let (pc, pp, pq) = (
+            params[corner],
+            params[(corner + 1) % 3],
+            params[(corner + 2) % 3],
+        );
+        let at = |h: f64| {
+            (
+                pc.0 + h * (pp.0 - pc.0) + h * (pq.0 - pc.0),
+                pc.1 + h * (pp.1 - pc.1) + h * (pq.1 - pc.1),
+            )
+        };
+        let n = surface.normal(t, pc.0, pc.1).unwrap();
+        let angle = |k: i32| {
+            let (v, w) = at(0.5f64.powi(k));
+            surface.normal(t, v, w).unwrap().angle_between(n)
+        };
+        // Geometric convergence, slow at a dart (about 0.85 a level): a wrong
+        // vertex normal would leave the angle stuck instead.
+        let (near, nearer) = (angle(10), angle(40));
+        assert!(
+            nearer < 1e-2 && nearer <= near * 0.05 + 1e-12,
+            "triangle {t}: {near} -> {nearer}"
+        );
+    }
+}
