@@ -94,6 +94,12 @@ impl Surface {
         &self.net
     }
 
+    /// Bytes the surface holds beyond its control net (per-triangle tables
+    /// and the shared special-vertex configurations).
+    pub fn memory_bytes(&self) -> usize {
+        self.evaluator.memory_bytes()
+    }
+
     /// Number of distinct special-vertex configurations precomputed.
     pub fn configurations(&self) -> usize {
         self.evaluator.configurations()

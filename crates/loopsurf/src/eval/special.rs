@@ -13,8 +13,8 @@
 //! including the ones nobody publishes (creases, darts, corners on Loop), is
 //! covered by the same code.
 //!
-//! Constant time: A^n is applied as at most [`POWERS`] products with the
-//! cached powers A^(2^j). Valence 3, whose matrix is not diagonalisable,
+//! Constant time: A^n is applied as a few products with the cached powers
+//! A^(2^j) (bounded by the range of doubles, whatever the point). Valence 3, whose matrix is not diagonalisable,
 //! needs nothing special. For accuracy near c, everything is done on the
 //! offsets from the limit point L of c: the deflated matrix D = A − 1·l
 //! (l the limit mask of [`crate::rules`]) has only decaying eigenvalues, so relative errors grow
@@ -30,8 +30,9 @@ use crate::topology::Topology;
 use glam::DVec3;
 use std::collections::HashMap;
 
-/// Number of cached powers A^(2^j): rings down to 2^-(2^POWERS) from c.
-pub const POWERS: usize = 11;
+/// Number of cached powers D^(2^j). Deeper rings apply the largest one
+/// repeatedly: at most 16 more products down to the smallest double.
+pub const POWERS: usize = 7;
 
 /// The evaluation data of one local configuration, shared by every special
 /// corner that looks the same.
@@ -102,7 +103,7 @@ impl SpecialPatch {
         let n = self.size;
         // Ring number: scale by 2 until the point lies in the first ring.
         let (mut s, mut t, mut rings) = (s, t, 0usize);
-        while s + t < 0.5 && rings < (1 << POWERS) - 1 {
+        while s + t < 0.5 {
             s *= 2.0;
             t *= 2.0;
             rings += 1;
@@ -192,6 +193,15 @@ impl SpecialPatch {
                     + limit
             })
             .collect()
+    }
+
+    /// Bytes held by this configuration.
+    pub fn memory_bytes(&self) -> usize {
+        let floats = self.limit.len()
+            + self.powers.iter().map(Vec::len).sum::<usize>()
+            + self.band.iter().map(Vec::len).sum::<usize>()
+            + self.tangents.iter().map(Vec::len).sum::<usize>();
+        std::mem::size_of::<Self>() + floats * std::mem::size_of::<f64>()
     }
 
     /// The outward unit normal at c of the sector (c, p, q): exact, from the

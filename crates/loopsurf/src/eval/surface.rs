@@ -9,26 +9,32 @@ use crate::net::ControlNet;
 use glam::DVec3;
 use std::sync::Arc;
 
-/// How one triangle of the once-refined net is evaluated.
-// Nearly every patch is regular: storing its coefficients inline keeps an
-// evaluation to one memory region, where boxing them would add a pointer chase.
-#[allow(clippy::large_enum_variant)]
-#[derive(Debug)]
+/// How one triangle of the once-refined net is evaluated: an index into
+/// one of the two tables, so that special triangles do not pay for the
+/// space of regular ones.
+#[derive(Debug, Clone, Copy)]
 enum Patch {
-    /// A box spline, stored as its polynomial coefficients.
-    Regular([DVec3; 15]),
-    /// Corner `corner` is special; `points` is its neighbourhood.
-    Special {
-        corner: u8,
-        patch: Arc<SpecialPatch>,
-        points: Vec<u32>,
-    },
+    Regular(u32),
+    Special(u32),
 }
 
-/// An evaluator of the limit surface of a control net.
+/// A triangle whose corner `corner` is special; `points` is its
+/// neighbourhood in the once-refined net.
+#[derive(Debug)]
+struct SpecialCorner {
+    corner: u8,
+    patch: Arc<SpecialPatch>,
+    points: Box<[u32]>,
+}
+
+/// An evaluator of the limit surface of a control net. Keeps only what
+/// evaluation reads: the once-refined positions, box-spline coefficients of
+/// regular triangles and the neighbourhoods of special corners.
 pub struct Evaluator {
-    fine: ControlNet,
+    points: Vec<DVec3>,
     patches: Vec<Patch>,
+    regular: Vec<[DVec3; 15]>,
+    special: Vec<SpecialCorner>,
     configurations: usize,
 }
 
@@ -41,11 +47,13 @@ impl Evaluator {
         let (topo, features) = (fine.topology(), fine.features());
         let kinds = fine.vertex_kinds();
         let mut cache = Cache::default();
+        let (mut regular_patches, mut special) = (Vec::new(), Vec::new());
         let patches = (0..topo.num_triangles())
             .map(|t| {
                 if let Some(s) = regular::stencil(topo, features, &kinds, t) {
                     let control = s.map(|p| p.position(fine.points()));
-                    return Patch::Regular(box_spline::coefficients(&control));
+                    regular_patches.push(box_spline::coefficients(&control));
+                    return Patch::Regular(regular_patches.len() as u32 - 1);
                 }
                 // Child k < 3 of a control triangle has the control vertex
                 // at its corner k; the centre child is always regular.
@@ -57,16 +65,19 @@ impl Evaluator {
                     features,
                     [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]],
                 );
-                Patch::Special {
+                special.push(SpecialCorner {
                     corner: corner as u8,
                     patch,
-                    points,
-                }
+                    points: points.into_boxed_slice(),
+                });
+                Patch::Special(special.len() as u32 - 1)
             })
             .collect();
         Evaluator {
-            fine,
+            points: fine.points().to_vec(),
             patches,
+            regular: regular_patches,
+            special,
             configurations: cache.len(),
         }
     }
@@ -75,20 +86,39 @@ impl Evaluator {
     #[cfg(test)]
     pub fn describe(&self, tri: usize, v: f64, w: f64) -> String {
         let (k, _) = child_containing(v, w);
-        let t = 4 * tri + k;
-        let c = self.fine.triangles()[t];
-        let kinds = self.fine.vertex_kinds();
-        let what = match &self.patches[t] {
-            Patch::Regular(_) => "regular".to_string(),
-            Patch::Special { corner, points, .. } => {
-                format!("special corner {corner}, neighbourhood {points:?}")
+        match self.patches[4 * tri + k] {
+            Patch::Regular(_) => format!("child {k}: regular"),
+            Patch::Special(i) => {
+                let s = &self.special[i as usize];
+                format!(
+                    "child {k}: special corner {}, neighbourhood {:?}",
+                    s.corner, s.points
+                )
             }
-        };
-        format!(
-            "child {k} {c:?} kinds {:?} valences {:?}: {what}",
-            c.map(|x| kinds[x as usize]),
-            c.map(|x| self.fine.topology().valence(x as usize))
-        )
+        }
+    }
+
+    /// Bytes held: the tables, the special-corner neighbourhoods and each
+    /// shared configuration once.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let mut seen = std::collections::HashSet::new();
+        let shared: usize = self
+            .special
+            .iter()
+            .filter(|s| seen.insert(Arc::as_ptr(&s.patch)))
+            .map(|s| s.patch.memory_bytes())
+            .sum();
+        self.points.capacity() * size_of::<DVec3>()
+            + self.patches.capacity() * size_of::<Patch>()
+            + self.regular.capacity() * size_of::<[DVec3; 15]>()
+            + self.special.capacity() * size_of::<SpecialCorner>()
+            + self
+                .special
+                .iter()
+                .map(|s| s.points.len() * size_of::<u32>())
+                .sum::<usize>()
+            + shared
     }
 
     /// Number of distinct special-corner configurations built.
@@ -102,18 +132,19 @@ impl Evaluator {
     pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
         let (k, to_child) = child_containing(v, w);
         let t = 4 * tri + k;
-        let points = self.fine.points();
-        match &self.patches[t] {
-            Patch::Regular(coefficients) => {
+        let points = &self.points;
+        match self.patches[t] {
+            Patch::Regular(i) => {
                 let (s, u) = to_child.apply(v, w);
-                let d = box_spline::eval_coefficients(coefficients, s, u);
+                let d = box_spline::eval_coefficients(&self.regular[i as usize], s, u);
                 Ok(to_child.pull_back(d))
             }
-            Patch::Special {
-                corner,
-                patch,
-                points: around,
-            } => {
+            Patch::Special(i) => {
+                let SpecialCorner {
+                    corner,
+                    patch,
+                    points: around,
+                } = &self.special[i as usize];
                 let map = rotation(*corner as usize).after(&to_child);
                 let (s, u) = map.apply(v, w);
                 if s + u <= 0.0 {
