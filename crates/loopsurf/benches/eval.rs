@@ -48,6 +48,11 @@ fn eval(c: &mut Criterion) {
             b.iter(|| single.install(|| Surface::new(&net)))
         });
         let surface = Surface::new(&net);
+        eprintln!(
+            "{name}: built surface holds {:.0} bytes per control triangle ({} special-vertex configurations)",
+            surface.memory_bytes() as f64 / ntris as f64,
+            surface.configurations()
+        );
         let mut state = 42u64;
         // (i) one point per triangle, triangles in random order.
         let mut order: Vec<u32> = (0..ntris as u32).collect();

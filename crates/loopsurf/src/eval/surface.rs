@@ -73,6 +73,8 @@ impl Evaluator {
                 Patch::Special(special.len() as u32 - 1)
             })
             .collect();
+        regular_patches.shrink_to_fit();
+        special.shrink_to_fit();
         Evaluator {
             points: fine.points().to_vec(),
             patches,
