@@ -18,7 +18,7 @@ const CHUNK: usize = 1 << 16;
 
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
-    let surface = Surface::new(&net);
+    let surface = Surface::new(&net)?;
     let stdin = std::io::stdin();
     let mut lines = stdin.lock().lines().enumerate();
     crate::write_stdout(|out| {

@@ -190,7 +190,7 @@ fn eval_reads_back_bit_exact() {
     let ex = loopsurf::examples::cube();
     let mut net = loopsurf::ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
     net.tag_by_angle(30.0).unwrap();
-    let surface = loopsurf::Surface::new(&net);
+    let surface = loopsurf::Surface::new(&net).unwrap();
     let expected = [
         (0, 0.25, 0.25),
         (7, 0.0, 0.0),

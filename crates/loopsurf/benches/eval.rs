@@ -45,9 +45,9 @@ fn eval(c: &mut Criterion) {
         let mut group = c.benchmark_group(format!("eval_{name}"));
         group.sample_size(10);
         group.bench_function("build", |b| {
-            b.iter(|| single.install(|| Surface::new(&net)))
+            b.iter(|| single.install(|| Surface::new(&net).unwrap()))
         });
-        let surface = Surface::new(&net);
+        let surface = Surface::new(&net).unwrap();
         eprintln!(
             "{name}: built surface holds {:.0} bytes per control triangle ({} special-vertex configurations)",
             surface.memory_bytes() as f64 / ntris as f64,

@@ -82,11 +82,12 @@ impl Curvature {
 
 impl Surface {
     /// Precomputes every triangle's evaluation data (the net is copied).
-    pub fn new(net: &ControlNet) -> Surface {
-        Surface {
+    /// Fails only when the once-refined net would not fit 32-bit indices.
+    pub fn new(net: &ControlNet) -> Result<Surface> {
+        Ok(Surface {
             net: net.clone(),
-            evaluator: Evaluator::new(net),
-        }
+            evaluator: Evaluator::new(net)?,
+        })
     }
 
     /// The control net.
@@ -144,10 +145,13 @@ impl Surface {
     /// own tangent plane.
     pub fn normal(&self, tri: usize, v: f64, w: f64) -> Result<DVec3> {
         let (v, w) = self.check(tri, v, w)?;
-        Ok(match self.evaluator.eval(tri, v, w) {
-            Ok(d) => d[1].cross(d[2]).normalize_or_zero(),
-            Err(at) => at.normal,
-        })
+        match self.evaluator.eval(tri, v, w) {
+            Ok(d) => Ok(d[1].cross(d[2]).normalize_or_zero()),
+            Err(at) => at.normal.ok_or(Error::NoTangentPlane {
+                vertex: at.vertex,
+                kind: "special",
+            }),
+        }
     }
 
     /// Principal curvatures and directions, mean and Gaussian curvature.
@@ -174,7 +178,7 @@ impl Surface {
         }
         let (v, w) = (v.max(0.0), w.max(0.0));
         let excess = (v + w - 1.0).max(0.0);
-        Ok((v - excess / 2.0, w - excess / 2.0))
+        Ok(((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0)))
     }
 }
 
@@ -189,52 +193,48 @@ fn curvature_of(e: &Evaluation) -> Curvature {
         gaussian: 0.0,
         reliable: false,
     };
-    let cross = e.xv.cross(e.xw);
-    if e.at_special_vertex || cross.length() <= 1e-300 {
+    let (ee, ff, gg) = (e.xv.dot(e.xv), e.xv.dot(e.xw), e.xw.dot(e.xw));
+    let det = ee * gg - ff * ff;
+    // Degenerate or non-finite tangent plane (NaN fails `is_degenerate` too).
+    let is_degenerate = det.is_nan() || det <= f64::EPSILON * ee * gg;
+    if e.at_special_vertex || is_degenerate {
         return unreliable;
     }
-    let n = cross.normalize();
-    let (ee, ff, gg) = (e.xv.dot(e.xv), e.xv.dot(e.xw), e.xw.dot(e.xw));
+    let n = e.xv.cross(e.xw).normalize();
     // Sign: positive where the surface bends away from the outward normal.
     let (l, m, nn) = (-e.xvv.dot(n), -e.xvw.dot(n), -e.xww.dot(n));
-    let det = ee * gg - ff * ff;
     let gaussian = (l * nn - m * m) / det;
     let mean = (ee * nn - 2.0 * ff * m + gg * l) / (2.0 * det);
     let disc = (mean * mean - gaussian).max(0.0).sqrt();
     let (k1, k2) = (mean + disc, mean - disc);
-    // Principal direction for k: (II − k I) (a, b) = 0.
-    let direction = |k: f64, other: DVec3| {
-        let (a11, a12, a22) = (l - k * ee, m - k * ff, nn - k * gg);
-        let (a, b) = if a11.abs() + a12.abs() >= a12.abs() + a22.abs() {
-            (-a12, a11)
-        } else {
-            (a22, -a12)
-        };
-        let d = a * e.xv + b * e.xw;
-        if d.length() > 1e-300 && disc > 1e-12 * mean.abs().max(1e-300) {
-            d.normalize()
-        } else {
-            // Umbilic: every direction is principal; pick one orthogonal pair.
-            other
-        }
+    // Principal direction of k1: (II − k1 I)(a, b) = 0, from the better
+    // conditioned row. Near an umbilic (k1 ≈ k2 to round-off) every
+    // direction is principal.
+    let (a11, a12, a22) = (l - k1 * ee, m - k1 * ff, nn - k1 * gg);
+    let (a, b) = if a11.abs() + a12.abs() >= a12.abs() + a22.abs() {
+        (-a12, a11)
+    } else {
+        (a22, -a12)
     };
-    let dir1 = direction(k1, e.xv.normalize());
-    let dir2 = {
-        let d = direction(k2, n.cross(dir1));
-        if d == dir1 {
-            n.cross(dir1)
-        } else {
-            d
-        }
+    let umbilic = disc <= f64::EPSILON.sqrt() * (k1.abs() + k2.abs());
+    let dir1 = match (a * e.xv + b * e.xw).try_normalize() {
+        Some(d) if !umbilic => d,
+        _ => e.xv.normalize(),
     };
-    Curvature {
+    let curvature = Curvature {
         k1,
         dir1,
         k2,
-        dir2,
+        dir2: n.cross(dir1),
         mean,
         gaussian,
         reliable: true,
+    };
+    if curvature.record().iter().all(|x| x.is_finite()) && mean.is_finite() && gaussian.is_finite()
+    {
+        curvature
+    } else {
+        unreliable
     }
 }
 
@@ -249,7 +249,7 @@ mod tests {
 
     #[test]
     fn bad_queries_are_errors() {
-        let s = Surface::new(&sphere());
+        let s = Surface::new(&sphere()).unwrap();
         assert!(matches!(
             s.eval(9999, 0.1, 0.1),
             Err(Error::InvalidArgument(_))
@@ -276,7 +276,7 @@ mod tests {
             .unwrap();
         net.tag_by_angle(30.0).unwrap();
         for net in [sphere(), net] {
-            let s = Surface::new(&net);
+            let s = Surface::new(&net).unwrap();
             for t in 0..net.triangles().len() {
                 for (v, w) in [
                     (0.0, 0.0),
@@ -303,7 +303,7 @@ mod tests {
     #[test]
     fn sphere_like_surface_has_positive_curvature_and_outward_normals() {
         let net = sphere();
-        let s = Surface::new(&net);
+        let s = Surface::new(&net).unwrap();
         for t in 0..net.triangles().len() {
             let e = s.eval(t, 0.3, 0.3).unwrap();
             let n = s.normal(t, 0.3, 0.3).unwrap();

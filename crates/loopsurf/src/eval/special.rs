@@ -31,8 +31,14 @@ use glam::DVec3;
 use std::collections::HashMap;
 
 /// Number of cached powers D^(2^j). Deeper rings apply the largest one
-/// repeatedly: at most 16 more products down to the smallest double.
+/// repeatedly.
 pub const POWERS: usize = 7;
+
+/// Points closer to the special vertex than 2^-MAX_RINGS (in parameter)
+/// are the vertex: their position differs from its limit by far less than
+/// round-off, while their derivatives, scaled by up to 4^rings, would leave
+/// the range of doubles.
+pub const MAX_RINGS: usize = 256;
 
 /// The evaluation data of one local configuration, shared by every special
 /// corner that looks the same.
@@ -47,14 +53,15 @@ pub struct SpecialPatch {
     /// 12 × size each.
     band: [Vec<f64>; 3],
     /// Tangent masks of the sector at c (see [`sector_tangents`]).
-    tangents: [Vec<f64>; 2],
+    tangents: Option<[Vec<f64>; 2]>,
 }
 
 /// A special corner's configuration, in canonical local numbering.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 struct Key {
     /// Local labels of p and q: around a boundary vertex the numbering
-    /// starts at the boundary, so the same net serves several corners.
+    /// starts at the boundary whatever p is, so the local nets of its
+    /// corners coincide while their matrices differ.
     corner: [u32; 2],
     tris: Vec<[u32; 3]>,
     hard: Vec<[u32; 2]>,
@@ -79,7 +86,7 @@ impl Cache {
         let local = LocalNet::around(topo, features, c, p);
         let key = local.key(p, q);
         // The local net reproduces the rings of c, p and q, so the
-        // neighbourhood can be read off the net itself.
+        // neighbourhood is read off the global net, in the same order.
         let neighbourhood = neighbourhood(topo, c, p, q);
         let patch = self
             .patches
@@ -99,11 +106,15 @@ impl SpecialPatch {
     /// Evaluates at (s, t) of the triangle (c, p, q), s + t > 0, from the
     /// positions of the neighbourhood `around` (indices into `points`):
     /// X, Xs, Xt, Xss, Xst, Xtt.
-    pub fn eval(&self, points: &[DVec3], around: &[u32], s: f64, t: f64) -> [DVec3; 6] {
+    /// `None` closer than 2^-[`MAX_RINGS`] to c.
+    pub fn eval(&self, points: &[DVec3], around: &[u32], s: f64, t: f64) -> Option<[DVec3; 6]> {
         let n = self.size;
         // Ring number: scale by 2 until the point lies in the first ring.
         let (mut s, mut t, mut rings) = (s, t, 0usize);
         while s + t < 0.5 {
+            if rings == MAX_RINGS {
+                return None;
+            }
             s *= 2.0;
             t *= 2.0;
             rings += 1;
@@ -146,16 +157,31 @@ impl SpecialPatch {
             for (out, &i) in y.iter_mut().zip(around) {
                 *out = points[i as usize] - limit;
             }
+            fn apply<'a>(
+                power: &[f64],
+                n: usize,
+                y: &mut &'a mut [DVec3],
+                next: &mut &'a mut [DVec3],
+            ) {
+                for (i, out) in next.iter_mut().enumerate() {
+                    *out = power[i * n..(i + 1) * n]
+                        .iter()
+                        .zip(y.iter())
+                        .map(|(w, p)| *w * *p)
+                        .sum();
+                }
+                std::mem::swap(y, next);
+            }
+            // The largest cached power as often as needed, then the bits.
+            let top = 1usize << (POWERS - 1);
+            let mut remaining = rings;
+            while remaining >= 2 * top {
+                apply(&self.powers[POWERS - 1], n, &mut y, &mut next);
+                remaining -= top;
+            }
             for (j, power) in self.powers.iter().enumerate() {
-                if rings >> j & 1 == 1 {
-                    for (i, out) in next.iter_mut().enumerate() {
-                        *out = power[i * n..(i + 1) * n]
-                            .iter()
-                            .zip(y.iter())
-                            .map(|(w, p)| *w * *p)
-                            .sum();
-                    }
-                    std::mem::swap(&mut y, &mut next);
+                if remaining >> j & 1 == 1 {
+                    apply(power, n, &mut y, &mut next);
                 }
             }
             let control: [DVec3; 12] = std::array::from_fn(|r| {
@@ -174,7 +200,7 @@ impl SpecialPatch {
             m: [[(rings as f64).exp2(), 0.0], [0.0, (rings as f64).exp2()]],
             b: [0.0, 0.0],
         };
-        map.after(&scale).pull_back(d)
+        Some(map.after(&scale).pull_back(d))
     }
 
     /// One subdivision step of the neighbourhood (for tests).
@@ -200,20 +226,20 @@ impl SpecialPatch {
         let floats = self.limit.len()
             + self.powers.iter().map(Vec::len).sum::<usize>()
             + self.band.iter().map(Vec::len).sum::<usize>()
-            + self.tangents.iter().map(Vec::len).sum::<usize>();
+            + self.tangents.iter().flatten().map(Vec::len).sum::<usize>();
         std::mem::size_of::<Self>() + floats * std::mem::size_of::<f64>()
     }
 
-    /// The outward unit normal at c of the sector (c, p, q): exact, from the
+    /// The outward unit normal at c of the sector (c, p, q), exact, from the
     /// sector's tangent masks.
-    pub fn normal_at_vertex(&self, points: &[DVec3], around: &[u32]) -> DVec3 {
-        let [t1, t2] = self.tangents.each_ref().map(|row| {
+    pub fn normal_at_vertex(&self, points: &[DVec3], around: &[u32]) -> Option<DVec3> {
+        let [t1, t2] = self.tangents.as_ref()?.each_ref().map(|row| {
             row.iter()
                 .zip(around)
                 .map(|(w, &i)| *w * points[i as usize])
                 .sum::<DVec3>()
         });
-        t1.cross(t2).normalize_or_zero()
+        t1.cross(t2).try_normalize()
     }
 
     /// The limit position of c from the positions of its neighbourhood.
@@ -471,25 +497,31 @@ impl LocalNet {
 /// deflated matrix; QR with a positive diagonal keeps the orientation of
 /// (chord to p, chord to q), so t₁ × t₂ is the outward normal. Exact to
 /// round-off: each step shrinks the error by (λ₃/λ₂)^m.
-fn sector_tangents(power: &[f64], to_p: Vec<f64>, to_q: Vec<f64>, n: usize) -> [Vec<f64>; 2] {
+/// `None` when the chords collapse onto one line or the iteration does not
+/// settle (valences in the hundreds): then no normal is claimed.
+fn sector_tangents(
+    power: &[f64],
+    to_p: Vec<f64>,
+    to_q: Vec<f64>,
+    n: usize,
+) -> Option<[Vec<f64>; 2]> {
     let times = |row: &[f64]| -> Vec<f64> {
         (0..n)
             .map(|j| (0..n).map(|i| row[i] * power[i * n + j]).sum())
             .collect()
     };
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-    let orthonormal = |a: Vec<f64>, b: Vec<f64>| {
+    let orthonormal = |a: Vec<f64>, b: Vec<f64>| -> Option<[Vec<f64>; 2]> {
         let na = dot(&a, &a).sqrt();
         let a: Vec<f64> = a.iter().map(|x| x / na).collect();
         let proj = dot(&a, &b);
         let b: Vec<f64> = b.iter().zip(&a).map(|(y, x)| y - proj * x).collect();
         let nb = dot(&b, &b).sqrt();
-        let b: Vec<f64> = b.iter().map(|y| y / nb).collect();
-        [a, b]
+        (na > 1e-280 && nb > 1e-12 * na).then(|| [a, b.iter().map(|y| y / nb).collect()])
     };
-    let mut basis = orthonormal(to_p, to_q);
+    let mut basis = orthonormal(to_p, to_q)?;
     for _ in 0..4096 {
-        let next = orthonormal(times(&basis[0]), times(&basis[1]));
+        let next = orthonormal(times(&basis[0]), times(&basis[1]))?;
         let change = next[0]
             .iter()
             .zip(&basis[0])
@@ -498,10 +530,10 @@ fn sector_tangents(power: &[f64], to_p: Vec<f64>, to_q: Vec<f64>, n: usize) -> [
             .fold(0.0, f64::max);
         basis = next;
         if change < 1e-15 {
-            break;
+            return Some(basis);
         }
     }
-    basis
+    None
 }
 
 fn matmul(a: &[f64], b: &[f64], n: usize) -> Vec<f64> {

@@ -39,11 +39,8 @@ pub struct Evaluator {
 }
 
 impl Evaluator {
-    pub fn new(net: &ControlNet) -> Evaluator {
-        let fine = net
-            .refine_uniform(1)
-            .expect("one level always fits")
-            .into_net();
+    pub fn new(net: &ControlNet) -> crate::Result<Evaluator> {
+        let fine = net.refine_uniform(1)?.into_net();
         let (topo, features) = (fine.topology(), fine.features());
         let kinds = fine.vertex_kinds();
         let mut cache = Cache::default();
@@ -75,13 +72,13 @@ impl Evaluator {
             .collect();
         regular_patches.shrink_to_fit();
         special.shrink_to_fit();
-        Evaluator {
+        Ok(Evaluator {
             points: fine.points().to_vec(),
             patches,
             regular: regular_patches,
             special,
             configurations: cache.len(),
-        }
+        })
     }
 
     /// Which kind of patch serves (v, w) of `tri` (for test messages).
@@ -149,14 +146,18 @@ impl Evaluator {
                 } = &self.special[i as usize];
                 let map = rotation(*corner as usize).after(&to_child);
                 let (s, u) = map.apply(v, w);
+                let at_vertex = || AtVertex {
+                    vertex: around[0],
+                    limit: patch.limit_point(points, around),
+                    normal: patch.normal_at_vertex(points, around),
+                };
                 if s + u <= 0.0 {
-                    return Err(AtVertex {
-                        vertex: around[0],
-                        limit: patch.limit_point(points, around),
-                        normal: patch.normal_at_vertex(points, around),
-                    });
+                    return Err(at_vertex());
                 }
-                Ok(map.pull_back(patch.eval(points, around, s, u)))
+                match patch.eval(points, around, s, u) {
+                    Some(d) => Ok(map.pull_back(d)),
+                    None => Err(at_vertex()),
+                }
             }
         }
     }
@@ -169,6 +170,7 @@ pub struct AtVertex {
     pub vertex: u32,
     /// Its exact limit position.
     pub limit: DVec3,
-    /// The outward unit normal there of the sector the triangle lies in.
-    pub normal: DVec3,
+    /// The outward unit normal there of the sector the triangle lies in,
+    /// when the sector has a tangent plane.
+    pub normal: Option<DVec3>,
 }
