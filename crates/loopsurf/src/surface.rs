@@ -65,6 +65,9 @@ pub struct Curvature {
     /// False exactly at a special vertex, where curvature is unbounded
     /// (valence 3 and ≥ 7) or depends on the direction (valence 4 and 5), or
     /// where the tangent plane degenerates; the numbers are then zero.
+    /// Anywhere else the numbers are the exact curvature of the limit
+    /// surface at that point, even if it grows without bound towards an
+    /// irregular vertex.
     pub reliable: bool,
 }
 
@@ -195,7 +198,7 @@ fn curvature_of(e: &Evaluation) -> Curvature {
     };
     let (ee, ff, gg) = (e.xv.dot(e.xv), e.xv.dot(e.xw), e.xw.dot(e.xw));
     let det = ee * gg - ff * ff;
-    // Degenerate or non-finite tangent plane (NaN fails `is_degenerate` too).
+    // A degenerate or non-finite tangent plane (NaN counts as degenerate).
     let is_degenerate = det.is_nan() || det <= f64::EPSILON * ee * gg;
     if e.at_special_vertex || is_degenerate {
         return unreliable;
