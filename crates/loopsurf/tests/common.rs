@@ -2,8 +2,7 @@
 //! meshes cached by the test script.
 #![allow(dead_code)]
 
-use loopsurf::{ControlNet, DVec3};
-use std::f64::consts::TAU;
+use loopsurf::ControlNet;
 use std::path::PathBuf;
 
 /// A CGAL demo mesh from the cache the test command extracts, or None (with a
@@ -28,33 +27,8 @@ pub fn cgal_mesh(name: &str) -> Option<PathBuf> {
     }
 }
 
-/// A wavy bicone: two apexes of valence `n` joined by two rings of `n`
-/// vertices; closed. With `open`, the bottom apex is left out, so the lower
-/// ring is a boundary loop.
+/// [`loopsurf::examples::bicone`] as a control net.
 pub fn bicone(n: usize, open: bool) -> ControlNet {
-    let mut points = vec![DVec3::new(0.1, -0.05, 1.3)];
-    for ring in 0..2 {
-        for i in 0..n {
-            let a = TAU * (i as f64 + 0.5 * ring as f64) / n as f64;
-            let r = 1.0 + 0.15 * (3.0 * a).sin() + 0.05 * ring as f64;
-            let z = 0.4 - 0.8 * ring as f64 + 0.1 * (2.0 * a).cos();
-            points.push(DVec3::new(r * a.cos(), r * a.sin(), z));
-        }
-    }
-    let top_ring = |i: usize| 1 + (i % n) as u32;
-    let low_ring = |i: usize| 1 + n as u32 + (i % n) as u32;
-    let mut tris = Vec::new();
-    for i in 0..n {
-        tris.push([0, top_ring(i), top_ring(i + 1)]);
-        tris.push([top_ring(i), low_ring(i), top_ring(i + 1)]);
-        tris.push([top_ring(i + 1), low_ring(i), low_ring(i + 1)]);
-    }
-    if !open {
-        let bottom = points.len() as u32;
-        points.push(DVec3::new(-0.05, 0.1, -1.2));
-        for i in 0..n {
-            tris.push([bottom, low_ring(i + 1), low_ring(i)]);
-        }
-    }
-    ControlNet::from_arrays(points, &tris).unwrap()
+    let ex = loopsurf::examples::bicone(n, open);
+    ControlNet::from_arrays(ex.points, &ex.tris).unwrap()
 }

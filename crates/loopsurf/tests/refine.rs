@@ -1,13 +1,13 @@
-//! Uniform refinement against references that share no code with it:
-//! the quartic box spline on regular triangles (seed 000 eqs. 5–8), the
+//! Uniform refinement against references that share no code with it: the
 //! uniform cubic B-spline on creases and boundaries, and the invariance of
 //! limit positions under further refinement at irregular, dart, crease and
-//! corner vertices (any wrong rule or mask breaks it).
+//! corner vertices (any wrong rule or mask breaks it). The quartic box
+//! spline on regular triangles checks it too, in the evaluator's tests.
 
 mod common;
 
 use common::{bicone, cgal_mesh};
-use loopsurf::{examples, ControlNet, DVec3, Refinement, VertexKind};
+use loopsurf::{examples, ControlNet, DVec3, VertexKind};
 
 /// Limit positions of the vertices of `net` must not change when the net is
 /// refined further: vertex i keeps index i on every finer level.
@@ -84,132 +84,6 @@ fn limits_are_invariant_on_cgal_meshes() {
             assert!(net.tag_by_angle(deg).unwrap() > 0);
         }
         assert_limit_invariant(&net, 2, 1e-12);
-    }
-}
-
-/// The 12 control points of a regular triangle in seed 000's Fig. 6 order:
-/// the corners, then the outer ring counter-clockwise starting across the
-/// edge c1–c2 (x4), reaching x7 across c2–c0 and x10 across c0–c1.
-fn regular_stencil(net: &ControlNet, t: usize) -> Option<[DVec3; 12]> {
-    let topo = net.topology();
-    let kinds = net.vertex_kinds();
-    let c = topo.triangles()[t];
-    if c.iter()
-        .any(|&v| kinds[v as usize] != VertexKind::Smooth || topo.valence(v as usize) != 6)
-    {
-        return None;
-    }
-    // Ring of v rotated to start at `from`.
-    let ring_from = |v: u32, from: u32| -> Vec<u32> {
-        let r = topo.ring(v as usize);
-        let k = r.iter().position(|&x| x == from).unwrap();
-        (0..6).map(|i| r[(k + i) % 6]).collect()
-    };
-    let (r0, r1, r2) = (
-        ring_from(c[0], c[1]),
-        ring_from(c[1], c[2]),
-        ring_from(c[2], c[0]),
-    );
-    assert_eq!(r0[1], c[2]);
-    assert_eq!((r1[2], r2[2], r2[5]), (r0[5], r1[5], r0[2]));
-    let ids = [
-        c[0], c[1], c[2], r1[5], r2[3], r2[4], r0[2], r0[3], r0[4], r0[5], r1[3], r1[4],
-    ];
-    Some(ids.map(|i| net.points()[i as usize]))
-}
-
-/// Seed 000 eq. (8): x(v, w) = x φ c(v, w).
-fn box_spline(x: &[DVec3; 12], v: f64, w: f64) -> DVec3 {
-    #[rustfmt::skip]
-    const PHI: [[f64; 15]; 12] = [
-        [6., 0., 0., -12., -12., -12., 8., 12., 12., 8., -1., -2., 0., -2., -1.],
-        [1., 4., 2., 6., 6., 0., -4., -6., -12., -4., -1., -2., 0., 4., 2.],
-        [1., 2., 4., 0., 6., 6., -4., -12., -6., -4., 2., 4., 0., -2., -1.],
-        [0., 0., 0., 0., 0., 0., 2., 6., 6., 2., -1., -2., 0., -2., -1.],
-        [0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 2., 1.],
-        [0., 0., 0., 0., 0., 0., 0., 0., 0., 2., 0., 0., 0., -2., -1.],
-        [1., -2., 2., 0., -6., 0., 2., 6., 0., -4., -1., -2., 0., 4., 2.],
-        [1., -4., -2., 6., 6., 0., -4., -6., 0., 2., 1., 2., 0., -2., -1.],
-        [1., -2., -4., 0., 6., 6., 2., 0., -6., -4., -1., -2., 0., 2., 1.],
-        [1., 2., -2., 0., -6., 0., -4., 0., 6., 2., 2., 4., 0., -2., -1.],
-        [0., 0., 0., 0., 0., 0., 2., 0., 0., 0., -1., -2., 0., 0., 0.],
-        [0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 1., 2., 0., 0., 0.],
-    ];
-    let c = [
-        1.0,
-        v,
-        w,
-        v * v,
-        v * w,
-        w * w,
-        v * v * v,
-        v * v * w,
-        v * w * w,
-        w * w * w,
-        v.powi(4),
-        v.powi(3) * w,
-        v * v * w * w,
-        v * w.powi(3),
-        w.powi(4),
-    ];
-    x.iter()
-        .zip(&PHI)
-        .map(|(p, row)| *p * row.iter().zip(&c).map(|(a, b)| a * b).sum::<f64>() / 12.0)
-        .sum()
-}
-
-/// Every refined vertex whose control triangle is regular has the limit
-/// position the box spline gives at its dyadic (v, w).
-fn assert_matches_box_spline(net: &ControlNet, levels: u32) -> usize {
-    let diag = net.bbox_diagonal();
-    let refined: Refinement = net.refine_uniform(levels).unwrap();
-    let limits = refined.limit_points();
-    let stencils: Vec<Option<[DVec3; 12]>> = (0..net.triangles().len())
-        .map(|t| regular_stencil(net, t))
-        .collect();
-    let mut checked = 0;
-    for (origin, limit) in refined.origins().zip(&limits) {
-        let o = origin.unwrap();
-        let scale = (1u64 << levels) as f64;
-        assert_eq!((o.v * scale).fract(), 0.0, "parameters are dyadic");
-        assert_eq!((o.w * scale).fract(), 0.0, "parameters are dyadic");
-        assert!(o.v >= 0.0 && o.w >= 0.0 && o.v + o.w <= 1.0);
-        if let Some(x) = &stencils[o.tri as usize] {
-            let err = (box_spline(x, o.v, o.w) - *limit).length();
-            assert!(
-                err <= 1e-13 * diag,
-                "box spline differs by {:e} of the diagonal",
-                err / diag
-            );
-            checked += 1;
-        }
-    }
-    checked
-}
-
-#[test]
-fn regular_triangles_match_the_box_spline() {
-    let ex = examples::torus();
-    let net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
-    let checked = assert_matches_box_spline(&net, 3);
-    assert_eq!(
-        checked,
-        net.refine_uniform(3).unwrap().origins().len(),
-        "torus is all regular"
-    );
-}
-
-#[test]
-fn regular_triangles_of_real_meshes_match_the_box_spline() {
-    for name in ["pig.off", "bunny00.off"] {
-        let Some(path) = cgal_mesh(name) else { return };
-        let net = ControlNet::read(&path).unwrap();
-        let checked = assert_matches_box_spline(&net, 2);
-        eprintln!("{name}: {checked} refined vertices in regular triangles");
-        assert!(
-            checked > 500,
-            "{name}: too few regular triangles ({checked})"
-        );
     }
 }
 

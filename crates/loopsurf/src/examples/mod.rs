@@ -13,6 +13,7 @@
 
 use glam::DVec3;
 
+mod bicone;
 mod cube;
 mod disk;
 mod sphere;
@@ -23,6 +24,7 @@ mod viking;
 #[cfg(test)]
 mod checks;
 
+pub use bicone::bicone;
 pub use cube::cube;
 pub use disk::open_disk;
 pub use sphere::sphere;
