@@ -69,6 +69,24 @@ fn cgal(name: &str, angle: Option<f64>) -> Option<ControlNet> {
     Some(net)
 }
 
+/// Nets with every kind of special vertex: a valence-9 dart and a crease
+/// loop with irregular crease vertices, valence 3, cube corners, an
+/// irregular boundary, valence 80.
+fn every_kind_of_net() -> Vec<ControlNet> {
+    let mut cone = bicone(9);
+    cone.tag_edge(0, 1).unwrap();
+    for i in 0..9u32 {
+        cone.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
+    }
+    vec![
+        cone,
+        example("tetra", None),
+        example("cube", Some(30.0)),
+        example("open-disk", None),
+        bicone(80),
+    ]
+}
+
 fn example(name: &str, hard_angle: Option<f64>) -> ControlNet {
     let ex = examples::by_name(name).unwrap();
     let mut net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
@@ -368,18 +386,7 @@ fn exact_down_to_2_pow_minus_40_from_special_vertices() {
 /// special patches, with creases, corners, darts and boundaries.
 #[test]
 fn derivatives_match_central_differences() {
-    let mut cone = bicone(9);
-    cone.tag_edge(0, 1).unwrap();
-    for i in 0..9u32 {
-        cone.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
-    }
-    for net in [
-        cone,
-        example("tetra", None),
-        example("cube", Some(30.0)),
-        example("open-disk", None),
-        bicone(80),
-    ] {
+    for net in every_kind_of_net() {
         let eval = super::surface::Evaluator::new(&net).unwrap();
         let h: f64 = 1e-6;
         let scale = net.bbox_diagonal();
@@ -432,19 +439,8 @@ fn derivatives_match_central_differences() {
 /// same position, and across smooth edges the same normal.
 #[test]
 fn neighbours_agree_along_shared_edges() {
-    let mut cone = bicone(9);
-    cone.tag_edge(0, 1).unwrap();
-    for i in 0..9u32 {
-        cone.tag_edge(10 + i, 10 + (i + 1) % 9).unwrap();
-    }
     let params = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
-    for net in [
-        cone,
-        example("tetra", None),
-        example("cube", Some(30.0)),
-        example("open-disk", None),
-        bicone(80),
-    ] {
+    for net in every_kind_of_net() {
         let eval = super::surface::Evaluator::new(&net).unwrap();
         let topo = net.topology();
         let diag = net.bbox_diagonal();
