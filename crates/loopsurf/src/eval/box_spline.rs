@@ -46,8 +46,23 @@ pub fn coefficients(control: &[DVec3; 12]) -> [DVec3; 15] {
 }
 
 /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of a patch given by [`coefficients`].
-pub fn eval_coefficients(coefficients: &[DVec3; 15], v: f64, w: f64) -> [DVec3; 6] {
-    monomials(v, w).map(|m| m.iter().zip(coefficients).map(|(m, c)| *m * *c).sum())
+/// Written out term by term: the derivatives of the monomials are mostly
+/// zero, and skipping them is most of the cost of an evaluation.
+pub fn eval_coefficients(c: &[DVec3; 15], v: f64, w: f64) -> [DVec3; 6] {
+    let (v2, vw, w2) = (v * v, v * w, w * w);
+    let (v3, v2w, vw2, w3) = (v2 * v, v2 * w, v * w2, w2 * w);
+    [
+        c[0] + c[1] * v + c[2] * w + c[3] * v2 + c[4] * vw + c[5] * w2 + c[6] * v3 + c[7] * v2w + c[8] * vw2
+            + c[9] * w3 + c[10] * (v2 * v2) + c[11] * (v3 * w) + c[12] * (v2 * w2) + c[13] * (v * w3)
+            + c[14] * (w2 * w2),
+        c[1] + c[3] * (2.0 * v) + c[4] * w + c[6] * (3.0 * v2) + c[7] * (2.0 * vw) + c[8] * w2
+            + c[10] * (4.0 * v3) + c[11] * (3.0 * v2w) + c[12] * (2.0 * vw2) + c[13] * w3,
+        c[2] + c[4] * v + c[5] * (2.0 * w) + c[7] * v2 + c[8] * (2.0 * vw) + c[9] * (3.0 * w2) + c[11] * v3
+            + c[12] * (2.0 * v2w) + c[13] * (3.0 * vw2) + c[14] * (4.0 * w3),
+        c[3] * 2.0 + c[6] * (6.0 * v) + c[7] * (2.0 * w) + c[10] * (12.0 * v2) + c[11] * (6.0 * vw) + c[12] * (2.0 * w2),
+        c[4] + c[7] * (2.0 * v) + c[8] * (2.0 * w) + c[11] * (3.0 * v2) + c[12] * (4.0 * vw) + c[13] * (3.0 * w2),
+        c[5] * 2.0 + c[8] * (2.0 * v) + c[9] * (6.0 * w) + c[12] * (2.0 * v2) + c[13] * (6.0 * vw) + c[14] * (12.0 * w2),
+    ]
 }
 
 /// The monomials of eq. (5) and their derivatives, differentiated by hand.
