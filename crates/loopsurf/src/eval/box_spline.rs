@@ -27,8 +27,9 @@ const PHI: [[f64; 15]; 12] = [
 ];
 
 /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of the patch with these control
-/// points. (For a one-off patch, weighting the points is faster than
-/// folding them into polynomial coefficients first: the weights vectorise.)
+/// points, straight from eqs. (5)–(8): the reference the fast paths are
+/// tested against.
+#[cfg(test)]
 pub fn eval(control: &[DVec3; 12], v: f64, w: f64) -> [DVec3; 6] {
     weights(v, w).map(|row| control.iter().zip(&row).map(|(p, w)| *w * *p).sum())
 }
@@ -45,6 +46,22 @@ pub fn coefficients(control: &[DVec3; 12]) -> [DVec3; 15] {
     })
 }
 
+/// [`coefficients`] for control points that are themselves linear
+/// combinations of `n` points: 12 rows of n weights in, 15 rows out.
+pub fn coefficient_rows(control_rows: &[f64], n: usize) -> Vec<f64> {
+    let mut out = vec![0.0; 15 * n];
+    for (r, row) in PHI.iter().enumerate() {
+        for (j, &phi) in row.iter().enumerate() {
+            if phi != 0.0 {
+                for col in 0..n {
+                    out[j * n + col] += phi / 12.0 * control_rows[r * n + col];
+                }
+            }
+        }
+    }
+    out
+}
+
 /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of a patch given by [`coefficients`].
 /// Written out term by term: the derivatives of the monomials are mostly
 /// zero, and skipping them is most of the cost of an evaluation.
@@ -52,20 +69,60 @@ pub fn eval_coefficients(c: &[DVec3; 15], v: f64, w: f64) -> [DVec3; 6] {
     let (v2, vw, w2) = (v * v, v * w, w * w);
     let (v3, v2w, vw2, w3) = (v2 * v, v2 * w, v * w2, w2 * w);
     [
-        c[0] + c[1] * v + c[2] * w + c[3] * v2 + c[4] * vw + c[5] * w2 + c[6] * v3 + c[7] * v2w + c[8] * vw2
-            + c[9] * w3 + c[10] * (v2 * v2) + c[11] * (v3 * w) + c[12] * (v2 * w2) + c[13] * (v * w3)
+        c[0] + c[1] * v
+            + c[2] * w
+            + c[3] * v2
+            + c[4] * vw
+            + c[5] * w2
+            + c[6] * v3
+            + c[7] * v2w
+            + c[8] * vw2
+            + c[9] * w3
+            + c[10] * (v2 * v2)
+            + c[11] * (v3 * w)
+            + c[12] * (v2 * w2)
+            + c[13] * (v * w3)
             + c[14] * (w2 * w2),
-        c[1] + c[3] * (2.0 * v) + c[4] * w + c[6] * (3.0 * v2) + c[7] * (2.0 * vw) + c[8] * w2
-            + c[10] * (4.0 * v3) + c[11] * (3.0 * v2w) + c[12] * (2.0 * vw2) + c[13] * w3,
-        c[2] + c[4] * v + c[5] * (2.0 * w) + c[7] * v2 + c[8] * (2.0 * vw) + c[9] * (3.0 * w2) + c[11] * v3
-            + c[12] * (2.0 * v2w) + c[13] * (3.0 * vw2) + c[14] * (4.0 * w3),
-        c[3] * 2.0 + c[6] * (6.0 * v) + c[7] * (2.0 * w) + c[10] * (12.0 * v2) + c[11] * (6.0 * vw) + c[12] * (2.0 * w2),
-        c[4] + c[7] * (2.0 * v) + c[8] * (2.0 * w) + c[11] * (3.0 * v2) + c[12] * (4.0 * vw) + c[13] * (3.0 * w2),
-        c[5] * 2.0 + c[8] * (2.0 * v) + c[9] * (6.0 * w) + c[12] * (2.0 * v2) + c[13] * (6.0 * vw) + c[14] * (12.0 * w2),
+        c[1] + c[3] * (2.0 * v)
+            + c[4] * w
+            + c[6] * (3.0 * v2)
+            + c[7] * (2.0 * vw)
+            + c[8] * w2
+            + c[10] * (4.0 * v3)
+            + c[11] * (3.0 * v2w)
+            + c[12] * (2.0 * vw2)
+            + c[13] * w3,
+        c[2] + c[4] * v
+            + c[5] * (2.0 * w)
+            + c[7] * v2
+            + c[8] * (2.0 * vw)
+            + c[9] * (3.0 * w2)
+            + c[11] * v3
+            + c[12] * (2.0 * v2w)
+            + c[13] * (3.0 * vw2)
+            + c[14] * (4.0 * w3),
+        c[3] * 2.0
+            + c[6] * (6.0 * v)
+            + c[7] * (2.0 * w)
+            + c[10] * (12.0 * v2)
+            + c[11] * (6.0 * vw)
+            + c[12] * (2.0 * w2),
+        c[4] + c[7] * (2.0 * v)
+            + c[8] * (2.0 * w)
+            + c[11] * (3.0 * v2)
+            + c[12] * (4.0 * vw)
+            + c[13] * (3.0 * w2),
+        c[5] * 2.0
+            + c[8] * (2.0 * v)
+            + c[9] * (6.0 * w)
+            + c[12] * (2.0 * v2)
+            + c[13] * (6.0 * vw)
+            + c[14] * (12.0 * w2),
     ]
 }
 
 /// The monomials of eq. (5) and their derivatives, differentiated by hand.
+#[cfg(test)]
 fn monomials(v: f64, w: f64) -> [[f64; 15]; 6] {
     let (v2, w2, v3, w3) = (v * v, w * w, v * v * v, w * w * w);
     #[rustfmt::skip]
@@ -82,6 +139,7 @@ fn monomials(v: f64, w: f64) -> [[f64; 15]; 6] {
 
 /// Weights of the twelve control points for X, Xv, Xw, Xvv, Xvw, Xww at
 /// (v, w), in DESIGN.md's evaluation-record order.
+#[cfg(test)]
 pub fn weights(v: f64, w: f64) -> [[f64; 12]; 6] {
     let mut out = [[0.0; 12]; 6];
     for (d, mono) in monomials(v, w).iter().enumerate() {

@@ -49,8 +49,8 @@ pub struct SpecialPatch {
     limit: Vec<f64>,
     /// D^(2^j), row-major size × size.
     powers: Vec<Vec<f64>>,
-    /// The regular patches of the first ring (children 1, 2, 3 of (c, p, q)),
-    /// 12 × size each.
+    /// The regular patches of the first ring (children 1, 2, 3 of (c, p, q))
+    /// as polynomial coefficients over the neighbourhood, 15 × size each.
     band: [Vec<f64>; 3],
     /// Tangent masks of the sector at c (see [`sector_tangents`]).
     tangents: Option<[Vec<f64>; 2]>,
@@ -131,14 +131,14 @@ impl SpecialPatch {
         let band = &self.band[k - 1];
         let d = if rings == 0 {
             // In the first ring the band rows apply to the points themselves.
-            let control: [DVec3; 12] = std::array::from_fn(|r| {
+            let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
                 band[r * n..(r + 1) * n]
                     .iter()
                     .zip(around)
                     .map(|(w, &i)| *w * points[i as usize])
                     .sum()
             });
-            box_spline::eval(&control, u, v)
+            box_spline::eval_coefficients(&coefficients, u, v)
         } else {
             // Offsets from the limit point, pushed `rings` levels down with
             // the cached powers; two scratch vectors on the stack for the
@@ -184,14 +184,14 @@ impl SpecialPatch {
                     apply(power, n, &mut y, &mut next);
                 }
             }
-            let control: [DVec3; 12] = std::array::from_fn(|r| {
+            let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
                 band[r * n..(r + 1) * n]
                     .iter()
                     .zip(y.iter())
                     .map(|(w, p)| *w * *p)
                     .sum()
             });
-            let mut d = box_spline::eval(&control, u, v);
+            let mut d = box_spline::eval_coefficients(&coefficients, u, v);
             d[0] += limit;
             d
         };
@@ -456,8 +456,9 @@ impl LocalNet {
                     };
                     restrict(&full)
                 })
-                .collect()
+                .collect::<Vec<f64>>()
         });
+        let band = band.map(|rows| box_spline::coefficient_rows(&rows, size));
         // Limit mask of c: the left eigenvector of A for eigenvalue 1.
         let limit = restrict(&limit_rows[0]);
         let mut deflated = a;
