@@ -13,13 +13,13 @@
 //! including the ones nobody publishes (creases, darts, corners on Loop), is
 //! covered by the same code.
 //!
-//! Constant time: A^n is applied as a few products with the cached powers
-//! A^(2^j) (bounded by the range of doubles, whatever the point). Valence 3, whose matrix is not diagonalisable,
-//! needs nothing special. For accuracy near c, everything is done on the
-//! offsets from the limit point L of c: the deflated matrix D = A − 1·l
-//! (l the limit mask of [`crate::rules`]) has only decaying eigenvalues, so relative errors grow
-//! like n·ε instead of swamping the vanishing differences that derivatives
-//! are made of.
+//! Constant time: A^n is applied as a few products with cached powers
+//! (bounded by the range of doubles, whatever the point). Valence 3, whose
+//! matrix is not diagonalisable, needs nothing special. For accuracy near c,
+//! everything is done on the offsets from the limit point L of c: the
+//! deflated matrix D = A − 1·l (l the limit mask of [`crate::rules`]) has
+//! only decaying eigenvalues, so relative errors grow like n·ε instead of
+//! swamping the vanishing differences that derivatives are made of.
 
 use super::affine::{child, Affine};
 use super::{box_spline, regular};
