@@ -26,7 +26,7 @@ use super::{box_spline, regular};
 use crate::features::Features;
 use crate::net::limit_positions;
 use crate::refine::subdivide_points;
-use crate::topology::Topology;
+use crate::topology::{Topology, NONE};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -72,6 +72,8 @@ struct Key {
 #[derive(Default)]
 pub struct Cache {
     patches: HashMap<Key, std::sync::Arc<SpecialPatch>>,
+    /// Scratch labels of [`Key::around`], one per net vertex.
+    labels: Vec<u32>,
 }
 
 impl Cache {
@@ -83,15 +85,16 @@ impl Cache {
         features: &Features,
         [c, p, q]: [u32; 3],
     ) -> (std::sync::Arc<SpecialPatch>, Vec<u32>) {
-        let local = LocalNet::around(topo, features, c, p);
-        let key = local.key(p, q);
+        if self.labels.len() < topo.num_vertices() {
+            self.labels = vec![NONE; topo.num_vertices()];
+        }
         // The local net reproduces the rings of c, p and q, so the
         // neighbourhood is read off the global net, in the same order.
         let neighbourhood = neighbourhood(topo, c, p, q);
         let patch = self
             .patches
-            .entry(key)
-            .or_insert_with(|| std::sync::Arc::new(local.build(p, q)))
+            .entry(Key::around(topo, features, [c, p, q], &mut self.labels))
+            .or_insert_with_key(|key| std::sync::Arc::new(key.build()))
             .clone();
         (patch, neighbourhood)
     }
@@ -278,43 +281,44 @@ fn ring_from(topo: &Topology, v: u32, from: u32) -> Vec<u32> {
         .collect()
 }
 
-/// The triangles around c and its neighbours, renumbered canonically from
-/// (c, p): everything the rules of c and its ring read.
-struct LocalNet {
-    /// Local vertex → net vertex.
-    global: Vec<u32>,
-    tris: Vec<[u32; 3]>,
-    hard: Vec<[u32; 2]>,
-    tagged: Vec<u32>,
-}
-
-impl LocalNet {
-    fn around(topo: &Topology, features: &Features, c: u32, p: u32) -> LocalNet {
+impl Key {
+    /// The triangles around c and its neighbours, renumbered canonically
+    /// from (c, p), with their hard edges and corner tags: everything the
+    /// rules of c and its ring read, and all the patch (c, p, q) depends on.
+    /// `labels` is scratch space, one entry per net vertex, all `NONE` on
+    /// entry and on return: labelling is then a lookup, not a search.
+    fn around(
+        topo: &Topology,
+        features: &Features,
+        [c, p, q]: [u32; 3],
+        labels: &mut [u32],
+    ) -> Key {
         // Label c, its ring from p, then each ring vertex's neighbours in
         // ring order from its smallest-labelled neighbour: a numbering that
-        // depends on the configuration only. A few dozen vertices: a linear
-        // search beats hashing.
-        let mut global = vec![c];
-        let label_of =
-            |global: &[u32], g: u32| global.iter().position(|&x| x == g).map(|l| l as u32);
+        // depends on the configuration only.
+        fn label(labels: &mut [u32], global: &mut Vec<u32>, g: u32) {
+            if labels[g as usize] == NONE {
+                labels[g as usize] = global.len() as u32;
+                global.push(g);
+            }
+        }
+        let mut global = Vec::new();
+        label(labels, &mut global, c);
         let ring_c = ring_from(topo, c, p);
         for &x in &ring_c {
-            if label_of(&global, x).is_none() {
-                global.push(x);
-            }
+            label(labels, &mut global, x);
         }
         for &x in &ring_c {
             let ring = topo.ring(x as usize);
             let from = *ring
                 .iter()
-                .min_by_key(|&&r| label_of(&global, r).unwrap_or(u32::MAX))
+                .min_by_key(|&&r| labels[r as usize])
                 .unwrap_or(&c);
             for y in ring_from(topo, x, from) {
-                if label_of(&global, y).is_none() {
-                    global.push(y);
-                }
+                label(labels, &mut global, y);
             }
         }
+        let label_of = |g: u32| labels[g as usize];
         let inner = 1 + ring_c.len();
         let is_inner = |l: u32| (l as usize) < inner;
         let mut fan: Vec<u32> = global[..inner]
@@ -327,7 +331,7 @@ impl LocalNet {
         let mut hard = Vec::new();
         for &t in &fan {
             let g = topo.triangles()[t as usize];
-            let l = g.map(|g| label_of(&global, g).expect("every corner is labelled"));
+            let l = g.map(label_of);
             for (i, &e) in topo.triangle_edges()[t as usize].iter().enumerate() {
                 let (a, b) = (l[i].min(l[(i + 1) % 3]), l[i].max(l[(i + 1) % 3]));
                 if (is_inner(a) || is_inner(b)) && features.is_hard_edge(e as usize) {
@@ -344,30 +348,22 @@ impl LocalNet {
         let tagged = (0..inner as u32)
             .filter(|&l| features.is_tagged_vertex(global[l as usize] as usize))
             .collect();
-        LocalNet {
-            global,
+        let corner = [p, q].map(label_of);
+        for &g in &global {
+            labels[g as usize] = NONE;
+        }
+        Key {
+            corner,
             tris,
             hard,
             tagged,
         }
     }
 
-    fn label(&self, g: u32) -> u32 {
-        self.global.iter().position(|&x| x == g).unwrap_or(0) as u32
-    }
-
-    fn key(&self, p: u32, q: u32) -> Key {
-        Key {
-            corner: [self.label(p), self.label(q)],
-            tris: self.tris.clone(),
-            hard: self.hard.clone(),
-            tagged: self.tagged.clone(),
-        }
-    }
-
-    /// The matrices of this configuration, for the corner triangle (c, p, q).
-    fn build(&self, p: u32, q: u32) -> SpecialPatch {
-        let topo = &Topology::new(self.global.len(), self.tris.clone())
+    /// The matrices of this configuration.
+    fn build(&self) -> SpecialPatch {
+        let n0 = 1 + self.tris.iter().flatten().copied().max().unwrap_or(0) as usize;
+        let topo = &Topology::new(n0, self.tris.clone())
             .expect("the local net of a manifold net is manifold");
         let mut features = Features::new(topo);
         for &[a, b] in &self.hard {
@@ -376,8 +372,7 @@ impl LocalNet {
         for &v in &self.tagged {
             let _ = features.tag_vertex(v);
         }
-        let (lp, lq) = (self.label(p), self.label(q));
-        let n0 = self.global.len();
+        let [lp, lq] = self.corner;
         // S: one subdivision step of the local net as a matrix, and the limit
         // masks, three basis vectors at a time (x, y, z).
         let fine = topo.num_vertices() + topo.num_edges();
