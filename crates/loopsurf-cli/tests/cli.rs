@@ -137,28 +137,18 @@ fn bad_input_exits_2_with_one_line() {
     assert_clean_failure(&loopsurf(&["info"]), "MESH");
     assert_clean_failure(&loopsurf(&["frobnicate"]), "frobnicate");
     let tags = scratch("tags_bad.txt");
-    std::fs::write(&tags, "0 1\n1 two\n").unwrap();
-    assert_clean_failure(
-        &loopsurf(&[
+    let with_tags = |content: &str| {
+        std::fs::write(&tags, content).unwrap();
+        loopsurf(&[
             "info",
             "--example",
             "cube",
             "--hard-edges",
             tags.to_str().unwrap(),
-        ]),
-        "tags_bad.txt",
-    );
-    std::fs::write(&tags, "0 999999\n").unwrap();
-    assert_clean_failure(
-        &loopsurf(&[
-            "info",
-            "--example",
-            "cube",
-            "--hard-edges",
-            tags.to_str().unwrap(),
-        ]),
-        "tags_bad.txt:1",
-    );
+        ])
+    };
+    assert_clean_failure(&with_tags("0 1\n1 two\n"), "tags_bad.txt");
+    assert_clean_failure(&with_tags("0 999999\n"), "tags_bad.txt:1");
 }
 
 fn loopsurf_with_stdin(args: &[&str], stdin: &str) -> Output {

@@ -298,6 +298,23 @@ mod tests {
     }
 
     #[test]
+    fn eval_many_equals_one_by_one() {
+        let s = Surface::new(&sphere()).unwrap();
+        let queries: Vec<(u32, f64, f64)> =
+            (0..320).map(|t| (t, 0.1 + 0.001 * t as f64, 0.3)).collect();
+        let many = s.eval_many(&queries).unwrap();
+        for (q, e) in queries.iter().zip(&many) {
+            assert_eq!(*e, s.eval(q.0 as usize, q.1, q.2).unwrap());
+        }
+        let mut bad = queries.clone();
+        bad[77].1 = f64::NAN;
+        assert!(matches!(
+            s.eval_many(&bad),
+            Err(Error::BadParameter { tri: 77, .. })
+        ));
+    }
+
+    #[test]
     fn the_surface_is_send_and_sync() {
         fn check<T: Send + Sync>() {}
         check::<Surface>();

@@ -231,11 +231,6 @@ impl Topology {
         pieces
     }
 
-    /// The vertex of triangle t opposite its local edge i.
-    pub fn opposite(&self, t: usize, i: usize) -> u32 {
-        self.tris[t][(i + 2) % 3]
-    }
-
     /// Triangles around v in counter-clockwise order; on a boundary the fan
     /// starts at the triangle whose edge (v, next) is a boundary edge.
     pub fn fan(&self, v: usize) -> &[u32] {
