@@ -94,6 +94,10 @@ pub enum Error {
     /// or corner vertex).
     #[error("no tangent plane at vertex {vertex} ({kind} vertex) of the refined net")]
     NoTangentPlane { vertex: u32, kind: &'static str },
+    /// A surface stream ([`crate::Surface::from_bytes`]) that is truncated,
+    /// damaged, of another format version, or describes an invalid net.
+    #[error("surface stream: {message}")]
+    Stream { message: String },
     /// A caller-supplied argument that makes no sense (unknown edge, bad level count, ...).
     #[error("{0}")]
     InvalidArgument(String),

@@ -5,7 +5,7 @@
 //! [`rules`] (pure masks) → [`topology`] (connectivity only) →
 //! [`features`] (hard edges and vertex kinds) → [`net`] (positions) →
 //! [`refine`] (uniform subdivision) and evaluation ([`surface`], exact at any
-//! (triangle, v, w)). File formats live in [`io`], built-in shapes in
+//! (triangle, v, w)), with [`stream`] to ship a surface as bytes. File formats live in [`io`], built-in shapes in
 //! [`examples`].
 
 pub mod error;
@@ -16,6 +16,7 @@ pub mod io;
 pub mod net;
 pub mod refine;
 pub mod rules;
+pub mod stream;
 pub mod surface;
 pub mod topology;
 

@@ -1,0 +1,144 @@
+//! Functions that hand arrays to the caller (refinement, surface streams)
+//! and the matching frees. Arrays come from `malloc`, so C's `free` also
+//! releases them; `ls_free_array` and `ls_free_bytes` exist for languages
+//! without direct access to the C allocator (Fortran).
+
+use crate::ls_surface;
+use crate::status::{input, output, run, Fail};
+use crate::status::{LS_ERR_INTERNAL, LS_ERR_INVALID_ARGUMENT};
+use loopsurf::Surface;
+use std::ffi::{c_int, c_void};
+
+/// Copies `data` into a fresh `malloc` block (never NULL on success).
+unsafe fn malloc_copy<T: Copy>(data: &[T]) -> Result<*mut T, Fail> {
+    let bytes = std::mem::size_of_val(data).max(1);
+    let p = libc::malloc(bytes) as *mut T;
+    if p.is_null() {
+        return Err(Fail::new(
+            LS_ERR_INTERNAL,
+            format!("out of memory ({bytes} bytes)"),
+        ));
+    }
+    std::ptr::copy_nonoverlapping(data.as_ptr(), p, data.len());
+    Ok(p)
+}
+
+/// Refines the surface's control net `levels` times (0 to 12) by uniform
+/// Loop subdivision with its hard edges and corners. With `to_limit`
+/// nonzero, every vertex is moved to its exact limit position. Writes the
+/// counts and two new arrays, `xyz` (3 × nverts) and `tris` (3 × ntris,
+/// 0-based), to be released with `ls_free_array`. Numbering: the vertices of
+/// level k keep their indices at level k + 1, the vertex on edge e follows
+/// as nverts + e, and the children of triangle t are 4t to 4t + 3.
+#[no_mangle]
+pub unsafe extern "C" fn ls_refine(
+    surface: *const ls_surface,
+    levels: c_int,
+    to_limit: c_int,
+    nverts: *mut usize,
+    xyz: *mut *mut f64,
+    ntris: *mut usize,
+    tris: *mut *mut i32,
+) -> c_int {
+    run("ls_refine", || {
+        let surface = &input(surface, "surface")?.0;
+        let outs = (
+            output(nverts, "nverts")?,
+            output(xyz, "xyz")?,
+            output(ntris, "ntris")?,
+            output(tris, "tris")?,
+        );
+        let levels = u32::try_from(levels).map_err(|_| {
+            Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("levels = {levels}: must be ≥ 0"),
+            )
+        })?;
+        let refined = surface.net().refine_uniform(levels)?;
+        let net = refined.net();
+        if net.points().len() > i32::MAX as usize {
+            return Err(Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("{} vertices do not fit 32-bit indices", net.points().len()),
+            ));
+        }
+        let points = if to_limit != 0 {
+            refined.limit_points()
+        } else {
+            net.points().to_vec()
+        };
+        let coords: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+        let indices: Vec<i32> = net
+            .triangles()
+            .iter()
+            .flatten()
+            .map(|&i| i as i32)
+            .collect();
+        let coords_out = malloc_copy(&coords)?;
+        let tris_out = match malloc_copy(&indices) {
+            Ok(p) => p,
+            Err(fail) => {
+                libc::free(coords_out as *mut c_void);
+                return Err(fail);
+            }
+        };
+        *outs.0 = points.len();
+        *outs.1 = coords_out;
+        *outs.2 = net.triangles().len();
+        *outs.3 = tris_out;
+        Ok(())
+    })
+}
+
+/// Frees an array returned by `ls_refine` (NULL is ignored).
+#[no_mangle]
+pub unsafe extern "C" fn ls_free_array(array: *mut c_void) {
+    libc::free(array);
+}
+
+/// The surface as a versioned, checksummed byte stream, e.g. for
+/// `MPI_Bcast` to every rank: writes a new buffer and its length, to be
+/// released with `ls_free_bytes`. `ls_surface_load` turns it back into a
+/// surface that evaluates bit-identically.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_save(
+    surface: *const ls_surface,
+    bytes: *mut *mut u8,
+    n: *mut usize,
+) -> c_int {
+    run("ls_surface_save", || {
+        let surface = &input(surface, "surface")?.0;
+        let (bytes, n) = (output(bytes, "bytes")?, output(n, "n")?);
+        let stream = surface.to_bytes();
+        *bytes = malloc_copy(&stream)?;
+        *n = stream.len();
+        Ok(())
+    })
+}
+
+/// Frees a buffer returned by `ls_surface_save` (NULL is ignored); `n` is
+/// its length, accepted for symmetry and not needed.
+#[no_mangle]
+pub unsafe extern "C" fn ls_free_bytes(bytes: *mut u8, n: usize) {
+    let _ = n;
+    libc::free(bytes as *mut c_void);
+}
+
+/// Rebuilds a surface from `n` bytes written by `ls_surface_save` (on any
+/// rank or machine of the same byte order). Truncated, damaged or foreign
+/// bytes give LS_ERR_BAD_STREAM.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_load(
+    bytes: *const u8,
+    n: usize,
+    out: *mut *mut ls_surface,
+) -> c_int {
+    run("ls_surface_load", || {
+        input(bytes, "bytes")?;
+        let out = output(out, "out")?;
+        let stream = std::slice::from_raw_parts(bytes, n);
+        let surface = Surface::from_bytes(stream)?;
+        *out = Box::into_raw(Box::new(ls_surface(surface)));
+        Ok(())
+    })
+}

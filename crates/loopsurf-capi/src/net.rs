@@ -1,0 +1,163 @@
+//! Control nets: load, build from arrays, tag hard features, free.
+
+use crate::ls_net;
+use crate::status::{input, input_mut, output, run, run_void, Fail};
+use crate::status::{LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE};
+use loopsurf::{ControlNet, DVec3};
+use std::ffi::{c_char, c_int, CStr, OsStr};
+use std::os::unix::ffi::OsStrExt;
+
+/// Reads and validates a mesh file (.off .obj .ply .stl .tri, by extension)
+/// into a new net. Errors name the file and, for text formats, the line.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_load(path: *const c_char, out: *mut *mut ls_net) -> c_int {
+    run("ls_net_load", || {
+        let path = CStr::from_ptr(input(path, "path")?);
+        let out = output(out, "out")?;
+        let net = ControlNet::read(OsStr::from_bytes(path.to_bytes()))?;
+        *out = Box::into_raw(Box::new(ls_net(net)));
+        Ok(())
+    })
+}
+
+/// Builds a net from `nverts` points (`xyz`, 3 × nverts doubles) and
+/// `ntris` counter-clockwise triangles (`tris`, 3 × ntris 0-based indices),
+/// validated like a file. The arrays are copied.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_from_arrays(
+    nverts: usize,
+    xyz: *const f64,
+    ntris: usize,
+    tris: *const i32,
+    out: *mut *mut ls_net,
+) -> c_int {
+    run("ls_net_from_arrays", || {
+        let xyz = array(xyz, nverts, "xyz")?;
+        let tris = array(tris, ntris, "tris")?;
+        let out = output(out, "out")?;
+        let points = xyz
+            .chunks_exact(3)
+            .map(|p| DVec3::new(p[0], p[1], p[2]))
+            .collect();
+        let tris: Vec<[i64; 3]> = tris
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]].map(i64::from))
+            .collect();
+        let net = ControlNet::from_indices(points, &tris)?;
+        *out = Box::into_raw(Box::new(ls_net(net)));
+        Ok(())
+    })
+}
+
+/// Borrows `3 × n` values; NULL and sizes beyond memory are errors.
+unsafe fn array<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T], Fail> {
+    input(p, what)?;
+    let len = n
+        .checked_mul(3)
+        .filter(|len| len.saturating_mul(std::mem::size_of::<T>()) <= isize::MAX as usize)
+        .ok_or_else(|| {
+            Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("{what}: {n} × 3 is too large"),
+            )
+        })?;
+    Ok(std::slice::from_raw_parts(p, len))
+}
+
+/// A vertex index of `net`, or an out-of-range error naming it.
+pub(crate) fn vertex_index(net: &ControlNet, v: i32, what: &str) -> Result<u32, Fail> {
+    let n = net.points().len();
+    u32::try_from(v)
+        .ok()
+        .filter(|&i| (i as usize) < n)
+        .ok_or_else(|| {
+            Fail::new(
+                LS_ERR_INDEX_OUT_OF_RANGE,
+                format!("{what} {v}: out of range (the net has {n} vertices)"),
+            )
+        })
+}
+
+/// Tags the edge between vertices a and b hard (crease rules). An edge that
+/// is already hard is not an error; (a, b) not being an edge is.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_tag_edge(net: *mut ls_net, a: i32, b: i32) -> c_int {
+    run("ls_net_tag_edge", || {
+        let net = &mut input_mut(net, "net")?.0;
+        let (a, b) = (
+            vertex_index(net, a, "vertex")?,
+            vertex_index(net, b, "vertex")?,
+        );
+        net.tag_edge(a, b)?;
+        Ok(())
+    })
+}
+
+/// Tags vertex v as a corner: it stays fixed (its limit is itself).
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_tag_vertex(net: *mut ls_net, v: i32) -> c_int {
+    run("ls_net_tag_vertex", || {
+        let net = &mut input_mut(net, "net")?.0;
+        let v = vertex_index(net, v, "vertex")?;
+        net.tag_vertex(v)?;
+        Ok(())
+    })
+}
+
+/// Tags hard every interior edge whose dihedral angle (between the normals
+/// of its two triangles) exceeds `degrees` (0 to 180). Writes how many
+/// edges became hard to `ntagged` unless it is NULL.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_tag_by_angle(
+    net: *mut ls_net,
+    degrees: f64,
+    ntagged: *mut usize,
+) -> c_int {
+    run("ls_net_tag_by_angle", || {
+        let net = &mut input_mut(net, "net")?.0;
+        if !degrees.is_finite() {
+            return Err(Fail::new(
+                LS_ERR_NOT_FINITE,
+                format!("angle {degrees} is not finite"),
+            ));
+        }
+        let n = net.tag_by_angle(degrees)?;
+        if !ntagged.is_null() {
+            *ntagged = n;
+        }
+        Ok(())
+    })
+}
+
+/// Writes the numbers of vertices, triangles and hard edges (boundary
+/// edges included); each output may be NULL.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_counts(
+    net: *const ls_net,
+    nverts: *mut usize,
+    ntris: *mut usize,
+    nhard_edges: *mut usize,
+) -> c_int {
+    run("ls_net_counts", || {
+        let net = &input(net, "net")?.0;
+        let counts = [
+            net.points().len(),
+            net.triangles().len(),
+            net.features().num_hard_edges(),
+        ];
+        for (p, n) in [nverts, ntris, nhard_edges].into_iter().zip(counts) {
+            if !p.is_null() {
+                *p = n;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Frees a net (NULL is ignored). Surfaces built from it stay valid.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_free(net: *mut ls_net) {
+    if !net.is_null() {
+        run_void("ls_net_free", || drop(Box::from_raw(net)));
+    }
+}

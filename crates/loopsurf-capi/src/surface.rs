@@ -1,0 +1,239 @@
+//! Surfaces: build, evaluate, curvature, normals, snap, free.
+
+use crate::status::{input, output, run, run_void, Fail};
+use crate::status::{LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_NOT_FINITE, LS_ERR_UNSUPPORTED};
+use crate::{ls_net, ls_surface};
+use loopsurf::Surface;
+use rayon::prelude::*;
+use std::ffi::c_int;
+
+/// Freezes a net into an immutable surface, precomputing every triangle's
+/// evaluation data. The net is copied: it may be changed or freed after.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_build(net: *const ls_net, out: *mut *mut ls_surface) -> c_int {
+    run("ls_surface_build", || {
+        let net = &input(net, "net")?.0;
+        let out = output(out, "out")?;
+        let surface = Surface::new(net)?;
+        *out = Box::into_raw(Box::new(ls_surface(surface)));
+        Ok(())
+    })
+}
+
+/// Writes the number of triangles of the surface's control net: valid
+/// triangle indices are 0 to ntris − 1.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_num_triangles(
+    surface: *const ls_surface,
+    ntris: *mut usize,
+) -> c_int {
+    run("ls_surface_num_triangles", || {
+        let surface = &input(surface, "surface")?.0;
+        *output(ntris, "ntris")? = surface.net().triangles().len();
+        Ok(())
+    })
+}
+
+/// Checks a query's triangle index and numbers (the library checks the range
+/// of (v, w)), so each failure gets its own status code.
+fn query(surface: &Surface, tri: i32, v: f64, w: f64) -> Result<usize, Fail> {
+    let n = surface.net().triangles().len();
+    let t = usize::try_from(tri)
+        .ok()
+        .filter(|&t| t < n)
+        .ok_or_else(|| {
+            Fail::new(
+                LS_ERR_INDEX_OUT_OF_RANGE,
+                format!("triangle {tri}: out of range (the net has {n} triangles)"),
+            )
+        })?;
+    if !v.is_finite() || !w.is_finite() {
+        return Err(Fail::new(
+            LS_ERR_NOT_FINITE,
+            format!("point (v, w) = ({v}, {w}) of triangle {tri}: not a finite number"),
+        ));
+    }
+    Ok(t)
+}
+
+/// Exact position and derivatives at (v, w) of triangle `tri` (barycentric
+/// weights 1 − v − w, v, w on its corners): 18 doubles X, Xv, Xw, Xvv, Xvw,
+/// Xww. Exactly at an irregular, crease, dart or corner vertex the
+/// parametrisation is singular: X is the limit position and the derivatives
+/// are 0 (use `ls_normal` for the normal there).
+#[no_mangle]
+pub unsafe extern "C" fn ls_evaluate(
+    surface: *const ls_surface,
+    tri: i32,
+    v: f64,
+    w: f64,
+    result: *mut f64,
+) -> c_int {
+    run("ls_evaluate", || {
+        let surface = &input(surface, "surface")?.0;
+        let result = output(result, "result")?;
+        let t = query(surface, tri, v, w)?;
+        let record = surface.eval(t, v, w)?.record();
+        std::ptr::copy_nonoverlapping(record.as_ptr(), result, record.len());
+        Ok(())
+    })
+}
+
+/// `ls_evaluate` for n points at once, in parallel: triangle `tri[i]` at
+/// (`vw[2i]`, `vw[2i+1]`) gives `results[18i .. 18i+18]`. Fails on the first
+/// bad query (the message names its position) and then writes nothing.
+/// The pointers may be NULL only when n is 0.
+#[no_mangle]
+pub unsafe extern "C" fn ls_evaluate_many(
+    surface: *const ls_surface,
+    n: usize,
+    tri: *const i32,
+    vw: *const f64,
+    results: *mut f64,
+) -> c_int {
+    run("ls_evaluate_many", || {
+        let surface = &input(surface, "surface")?.0;
+        if n == 0 {
+            return Ok(());
+        }
+        input(tri, "tri")?;
+        input(vw, "vw")?;
+        let results = output(results, "results")?;
+        let too_large = || {
+            Fail::new(
+                crate::status::LS_ERR_INVALID_ARGUMENT,
+                format!("n = {n} is too large"),
+            )
+        };
+        let len = n
+            .checked_mul(18)
+            .filter(|l| *l <= isize::MAX as usize / 8)
+            .ok_or_else(too_large)?;
+        let tri = std::slice::from_raw_parts(tri, n);
+        let vw = std::slice::from_raw_parts(vw, 2 * n);
+        // Evaluate into a buffer so that nothing is written unless all succeed.
+        let mut buffer = vec![0.0; len];
+        buffer
+            .par_chunks_mut(18)
+            .enumerate()
+            .try_for_each(|(i, out)| {
+                let (v, w) = (vw[2 * i], vw[2 * i + 1]);
+                let at = |f: Fail| f.context(&format!("query {i}"));
+                let t = query(surface, tri[i], v, w).map_err(at)?;
+                let record = surface.eval(t, v, w).map_err(|e| at(e.into()))?.record();
+                out.copy_from_slice(&record);
+                Ok::<(), Fail>(())
+            })?;
+        std::ptr::copy_nonoverlapping(buffer.as_ptr(), results, len);
+        Ok(())
+    })
+}
+
+/// The unit outward normal at (v, w) of triangle `tri` (3 doubles). Exactly
+/// at a special vertex it is the limit normal there, one-sided at creases
+/// and corners (each sector has its own tangent plane).
+#[no_mangle]
+pub unsafe extern "C" fn ls_normal(
+    surface: *const ls_surface,
+    tri: i32,
+    v: f64,
+    w: f64,
+    normal: *mut f64,
+) -> c_int {
+    run("ls_normal", || {
+        let surface = &input(surface, "surface")?.0;
+        let normal = output(normal, "normal")?;
+        let t = query(surface, tri, v, w)?;
+        let n = surface.normal(t, v, w)?.to_array();
+        std::ptr::copy_nonoverlapping(n.as_ptr(), normal, 3);
+        Ok(())
+    })
+}
+
+/// Principal curvatures and directions at (v, w) of triangle `tri`: 8
+/// doubles k1, dir1 (3), k2, dir2 (3), k1 ≥ k2, positive where the surface
+/// bends away from its outward normal (a sphere of radius r gives 1/r).
+/// Exactly at a special vertex, where curvature is unbounded or depends on
+/// the direction, all 8 are 0.
+#[no_mangle]
+pub unsafe extern "C" fn ls_curvature(
+    surface: *const ls_surface,
+    tri: i32,
+    v: f64,
+    w: f64,
+    result: *mut f64,
+) -> c_int {
+    run("ls_curvature", || {
+        let surface = &input(surface, "surface")?.0;
+        let result = output(result, "result")?;
+        let t = query(surface, tri, v, w)?;
+        let record = surface.curvature(t, v, w)?.record();
+        std::ptr::copy_nonoverlapping(record.as_ptr(), result, record.len());
+        Ok(())
+    })
+}
+
+/// The closest point of the limit surface to `xyz`: its triangle, (v, w),
+/// position and distance. Not available yet: returns LS_ERR_UNSUPPORTED
+/// after checking its arguments.
+#[no_mangle]
+pub unsafe extern "C" fn ls_snap(
+    surface: *const ls_surface,
+    xyz: *const f64,
+    tri: *mut i32,
+    vw: *mut f64,
+    xyz_out: *mut f64,
+    distance: *mut f64,
+) -> c_int {
+    run("ls_snap", || {
+        input(surface, "surface")?;
+        input(xyz, "xyz")?;
+        output(tri, "tri")?;
+        output(vw, "vw")?;
+        output(xyz_out, "xyz_out")?;
+        output(distance, "distance")?;
+        Err(Fail::new(
+            LS_ERR_UNSUPPORTED,
+            "snapping is not available in this version",
+        ))
+    })
+}
+
+/// `ls_snap` starting from a guess (`tri_guess`, `vw_guess`) near the
+/// answer, still returning the global closest point. Not available yet:
+/// returns LS_ERR_UNSUPPORTED after checking its arguments.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn ls_snap_guess(
+    surface: *const ls_surface,
+    xyz: *const f64,
+    tri_guess: i32,
+    vw_guess: *const f64,
+    tri: *mut i32,
+    vw: *mut f64,
+    xyz_out: *mut f64,
+    distance: *mut f64,
+) -> c_int {
+    let _ = tri_guess;
+    run("ls_snap_guess", || {
+        input(surface, "surface")?;
+        input(xyz, "xyz")?;
+        input(vw_guess, "vw_guess")?;
+        output(tri, "tri")?;
+        output(vw, "vw")?;
+        output(xyz_out, "xyz_out")?;
+        output(distance, "distance")?;
+        Err(Fail::new(
+            LS_ERR_UNSUPPORTED,
+            "snapping is not available in this version",
+        ))
+    })
+}
+
+/// Frees a surface (NULL is ignored). No other thread may still use it.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_free(surface: *mut ls_surface) {
+    if !surface.is_null() {
+        run_void("ls_surface_free", || drop(Box::from_raw(surface)));
+    }
+}
