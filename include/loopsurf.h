@@ -57,6 +57,15 @@
 // A bug in loopsurf (a caught panic); please report the message.
 #define LS_ERR_INTERNAL -12
 
+// `ls_surface_build_interpolating` mode: solve for new control points
+// whose smooth limit surface passes through the net's points.
+#define LS_INTERPOLATE_SOLVE 1
+
+// `ls_surface_build_interpolating` mode: the approximating surface plus a
+// linear correction per triangle, through the net's points exactly but
+// only C0 across edges.
+#define LS_INTERPOLATE_DISPLACEMENT 2
+
 // A control net being prepared: load or build it, tag its hard features,
 // then freeze it into an `ls_surface`.
 typedef struct ls_net ls_net;
@@ -149,6 +158,12 @@ const char *ls_status_string(int status);
 // Freezes a net into an immutable surface, precomputing every triangle's
 // evaluation data. The net is copied: it may be changed or freed after.
 int ls_surface_build(const ls_net *net, ls_surface **out);
+
+// Like `ls_surface_build`, but the surface passes through the net's points
+// (seed 000 §3.3): `mode` is LS_INTERPOLATE_SOLVE or
+// LS_INTERPOLATE_DISPLACEMENT. Solving fails with LS_ERR_INVALID_ARGUMENT
+// if the net's limit operator is singular or too ill-conditioned.
+int ls_surface_build_interpolating(const ls_net *net, int mode, ls_surface **out);
 
 // Writes the number of triangles of the surface's control net: valid
 // triangle indices are 0 to ntris − 1.

@@ -1,9 +1,11 @@
 //! Surfaces: build, evaluate, curvature, normals, snap, free.
 
 use crate::status::{input, output, run, run_void, Fail};
-use crate::status::{LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_NOT_FINITE, LS_ERR_UNSUPPORTED};
+use crate::status::{
+    LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE, LS_ERR_UNSUPPORTED,
+};
 use crate::{ls_net, ls_surface};
-use loopsurf::Surface;
+use loopsurf::{Surface, SurfaceMode};
 use rayon::prelude::*;
 use std::ffi::c_int;
 
@@ -15,6 +17,43 @@ pub unsafe extern "C" fn ls_surface_build(net: *const ls_net, out: *mut *mut ls_
         let net = &input(net, "net")?.0;
         let out = output(out, "out")?;
         let surface = Surface::new(net)?;
+        *out = Box::into_raw(Box::new(ls_surface(surface)));
+        Ok(())
+    })
+}
+
+/// `ls_surface_build_interpolating` mode: solve for new control points
+/// whose smooth limit surface passes through the net's points.
+pub const LS_INTERPOLATE_SOLVE: c_int = 1;
+/// `ls_surface_build_interpolating` mode: the approximating surface plus a
+/// linear correction per triangle, through the net's points exactly but
+/// only C0 across edges.
+pub const LS_INTERPOLATE_DISPLACEMENT: c_int = 2;
+
+/// Like `ls_surface_build`, but the surface passes through the net's points
+/// (seed 000 §3.3): `mode` is LS_INTERPOLATE_SOLVE or
+/// LS_INTERPOLATE_DISPLACEMENT. Solving fails with LS_ERR_INVALID_ARGUMENT
+/// if the net's limit operator is singular or too ill-conditioned.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_build_interpolating(
+    net: *const ls_net,
+    mode: c_int,
+    out: *mut *mut ls_surface,
+) -> c_int {
+    run("ls_surface_build_interpolating", || {
+        let net = &input(net, "net")?.0;
+        let out = output(out, "out")?;
+        let mode = match mode {
+            LS_INTERPOLATE_SOLVE => SurfaceMode::Solve,
+            LS_INTERPOLATE_DISPLACEMENT => SurfaceMode::Displacement,
+            _ => {
+                return Err(Fail::new(
+                    LS_ERR_INVALID_ARGUMENT,
+                    format!("mode {mode}: expected LS_INTERPOLATE_SOLVE (1) or LS_INTERPOLATE_DISPLACEMENT (2)"),
+                ))
+            }
+        };
+        let surface = Surface::with_mode(net, mode)?;
         *out = Box::into_raw(Box::new(ls_surface(surface)));
         Ok(())
     })

@@ -2,8 +2,8 @@
 //! (X Xv Xw Xvv Xvw Xww) per query on stdout, written so they read back
 //! bit-exact.
 
-use crate::input::Input;
-use loopsurf::{Error, Surface};
+use crate::input::{Input, SurfaceOptions};
+use loopsurf::Error;
 use rayon::prelude::*;
 use std::io::BufRead;
 
@@ -11,6 +11,8 @@ use std::io::BufRead;
 pub struct Args {
     #[command(flatten)]
     input: Input,
+    #[command(flatten)]
+    surface: SurfaceOptions,
 }
 
 /// Queries evaluated together (in parallel) before their results are written.
@@ -18,7 +20,7 @@ const CHUNK: usize = 1 << 16;
 
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
-    let surface = Surface::new(&net)?;
+    let surface = args.surface.build(&net)?;
     let stdin = std::io::stdin();
     let mut lines = stdin.lock().lines().enumerate();
     crate::write_stdout(|out| {

@@ -2,7 +2,7 @@
 //! plus the hard-feature flags.
 
 use loopsurf::io::ReadOptions;
-use loopsurf::{examples, ControlNet, Error};
+use loopsurf::{examples, ControlNet, Error, Surface, SurfaceMode};
 use std::path::{Path, PathBuf};
 
 /// Where the control net comes from and which features are hard.
@@ -116,4 +116,33 @@ fn read_index_lines(path: &Path) -> Result<Vec<(usize, Vec<u32>)>, Error> {
         out.push((i + 1, fields));
     }
     Ok(out)
+}
+
+/// Which surface the commands that evaluate build from the net.
+#[derive(clap::Args, Debug)]
+pub struct SurfaceOptions {
+    /// Make the surface pass through the mesh's points: `solve` (new
+    /// control points whose smooth limit surface interpolates) or
+    /// `displacement` (the approximating surface plus a linear correction
+    /// per triangle; C0 across edges).
+    #[arg(long, value_enum, value_name = "HOW")]
+    interpolate: Option<Interpolate>,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum Interpolate {
+    Solve,
+    Displacement,
+}
+
+impl SurfaceOptions {
+    /// Builds the surface of `net` in the chosen mode.
+    pub fn build(&self, net: &ControlNet) -> Result<Surface, Error> {
+        let mode = match self.interpolate {
+            None => SurfaceMode::Approximating,
+            Some(Interpolate::Solve) => SurfaceMode::Solve,
+            Some(Interpolate::Displacement) => SurfaceMode::Displacement,
+        };
+        Surface::with_mode(net, mode)
+    }
 }

@@ -4,6 +4,7 @@
 mod cmd_eval;
 mod cmd_hard_edges;
 mod cmd_info;
+mod cmd_interpolate;
 mod cmd_refine;
 mod input;
 
@@ -28,6 +29,8 @@ enum Command {
     Refine(cmd_refine::Args),
     /// Exact evaluation: reads `tri v w` lines on stdin, writes X Xv Xw Xvv Xvw Xww (18 numbers) per line.
     Eval(cmd_eval::Args),
+    /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
+    Interpolate(cmd_interpolate::Args),
 }
 
 /// Runs `write` against a buffered, locked stdout. A reader that stops
@@ -75,6 +78,7 @@ fn main() -> ExitCode {
         Command::HardEdges(args) => cmd_hard_edges::run(args),
         Command::Refine(args) => cmd_refine::run(args),
         Command::Eval(args) => cmd_eval::run(args),
+        Command::Interpolate(args) => cmd_interpolate::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

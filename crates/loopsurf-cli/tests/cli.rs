@@ -211,3 +211,65 @@ fn eval_rejects_bad_lines_by_number() {
     let out = loopsurf_with_stdin(&["eval", "--example", "sphere"], "99999 0.1 0.1\n");
     assert_clean_failure(&out, "line 1");
 }
+
+#[test]
+fn interpolate_writes_a_net_whose_surface_passes_through_the_points() {
+    let out_path = scratch("sphere-solved.off");
+    let hard = scratch("sphere-solved.hard");
+    let out = loopsurf(&[
+        "interpolate",
+        "--example",
+        "sphere",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--write-hard-edges",
+        hard.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    assert!(
+        report.contains("residual:") && report.contains("largest turn"),
+        "{report}"
+    );
+    assert!(out.stderr.is_empty(), "a smooth sphere gives no warning");
+    // The written net's limit surface interpolates the example's points:
+    // evaluating it at a triangle corner gives the original vertex.
+    let solved = loopsurf_with_stdin(&["eval", out_path.to_str().unwrap()], "0 0 0\n");
+    let original = loopsurf_with_stdin(
+        &["eval", "--example", "sphere", "--interpolate", "solve"],
+        "0 0 0\n",
+    );
+    let first3 = |o: &Output| -> Vec<f64> {
+        text(&o.stdout)
+            .split_whitespace()
+            .take(3)
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let e = loopsurf::examples::by_name("sphere").unwrap();
+    let p = e.points[e.tris[0][0] as usize].to_array();
+    for got in [first3(&solved), first3(&original)] {
+        for k in 0..3 {
+            assert!((got[k] - p[k]).abs() < 1e-12, "{got:?} vs {p:?}");
+        }
+    }
+    let displaced = loopsurf_with_stdin(
+        &[
+            "eval",
+            "--example",
+            "sphere",
+            "--interpolate",
+            "displacement",
+        ],
+        "0 0 0\n",
+    );
+    assert_eq!(
+        first3(&displaced),
+        p.to_vec(),
+        "displacement is exact at corners"
+    );
+    assert_clean_failure(
+        &loopsurf(&["eval", "--example", "sphere", "--interpolate", "bogus"]),
+        "bogus",
+    );
+}

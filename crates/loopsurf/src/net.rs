@@ -133,6 +133,18 @@ impl ControlNet {
         }
     }
 
+    /// The same net (topology and hard features) with other vertex
+    /// positions, one per vertex, taken as they are.
+    pub(crate) fn with_points(&self, points: Vec<DVec3>) -> ControlNet {
+        debug_assert_eq!(points.len(), self.points.len());
+        ControlNet {
+            points,
+            topo: self.topo.clone(),
+            features: self.features.clone(),
+            welded: self.welded,
+        }
+    }
+
     /// Vertex positions.
     pub fn points(&self) -> &[DVec3] {
         &self.points
@@ -280,6 +292,45 @@ pub(crate) fn limit_positions(
                 .sum::<DVec3>();
     }
     limits
+}
+
+/// The limit operator S∞ as sparse rows `(vertex, neighbour, weight)`: the
+/// same masks as [`limit_positions`] (a test checks that they agree), for
+/// solving S∞ x′ = x.
+pub(crate) fn limit_mask_entries(topo: &Topology, features: &Features) -> Vec<(u32, u32, f64)> {
+    let n = topo.num_vertices();
+    let zeros = vec![DVec3::ZERO; n];
+    let sums = NeighbourSums::new(topo, features, &zeros);
+    let mut entries = Vec::with_capacity(7 * n);
+    let mut dart_masks = std::collections::HashMap::new();
+    for v in 0..n as u32 {
+        let ring = topo.ring(v as usize);
+        let hard = || features.hard_neighbours(topo, v as usize);
+        match sums.kind(features, v as usize) {
+            VertexKind::Smooth => {
+                let omega = rules::limit_omega(ring.len());
+                let total = omega + ring.len() as f64;
+                entries.push((v, v, omega / total));
+                entries.extend(ring.iter().map(|&u| (v, u, 1.0 / total)));
+            }
+            VertexKind::Crease => {
+                entries.push((v, v, 4.0 / 6.0));
+                entries.extend(hard().into_iter().map(|u| (v, u, 1.0 / 6.0)));
+            }
+            VertexKind::Corner => entries.push((v, v, 1.0)),
+            VertexKind::Dart => {
+                let k = ring.len();
+                let (own, weights) = dart_masks
+                    .entry(k)
+                    .or_insert_with(|| rules::dart_limit_weights(k));
+                let across = hard()[0];
+                let at = ring.iter().position(|&u| u == across).unwrap_or(0);
+                entries.push((v, v, *own));
+                entries.extend((0..k).map(|j| (v, ring[j], weights[(j + k - at) % k])));
+            }
+        }
+    }
+    entries
 }
 
 /// Limit tangents at a control vertex.

@@ -12,7 +12,7 @@
 //! |---|---|
 //! | 8 | magic `LOOPSURF` |
 //! | 4 | format version ([`FORMAT_VERSION`]) |
-//! | 4 | surface mode (0: the approximating Loop surface) |
+//! | 4 | surface mode: 0 approximating, 1 solved interpolating (the net stored is the solved one), 2 displacement |
 //! | 4 × 8 | counts: vertices, triangles, hard edges, tagged vertices |
 //! | 24 per vertex | x y z (f64) |
 //! | 12 per triangle | c0 c1 c2 (u32) |
@@ -26,13 +26,17 @@
 
 use crate::error::{Error, Result};
 use crate::net::ControlNet;
-use crate::surface::Surface;
+use crate::surface::{Surface, SurfaceMode};
 use glam::DVec3;
 
 const MAGIC: &[u8; 8] = b"LOOPSURF";
 /// Version of the byte layout; bumped whenever it changes.
 pub const FORMAT_VERSION: u32 = 1;
-const MODE_APPROXIMATING: u32 = 0;
+const MODES: [SurfaceMode; 3] = [
+    SurfaceMode::Approximating,
+    SurfaceMode::Solve,
+    SurfaceMode::Displacement,
+];
 const HEADER_BYTES: usize = 8 + 4 + 4 + 4 * 8;
 const CHECKSUM_BYTES: usize = 4;
 
@@ -54,7 +58,11 @@ impl Surface {
         let mut out = Vec::with_capacity(len);
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-        out.extend_from_slice(&MODE_APPROXIMATING.to_le_bytes());
+        let mode = MODES
+            .iter()
+            .position(|&m| m == self.mode())
+            .expect("every mode listed") as u32;
+        out.extend_from_slice(&mode.to_le_bytes());
         for count in [
             net.points().len(),
             net.triangles().len(),
@@ -81,8 +89,8 @@ impl Surface {
     /// Rebuilds a surface from [`Surface::to_bytes`] output. Evaluations of
     /// the result are bit-identical to those of the original.
     pub fn from_bytes(bytes: &[u8]) -> Result<Surface> {
-        let net = read_net(bytes)?;
-        Surface::new(&net)
+        let (net, mode) = read_net(bytes)?;
+        Surface::from_net(net, mode)
     }
 }
 
@@ -93,7 +101,7 @@ fn bad(message: impl Into<String>) -> Error {
 }
 
 /// Parses and validates the control net a stream describes.
-fn read_net(bytes: &[u8]) -> Result<ControlNet> {
+fn read_net(bytes: &[u8]) -> Result<(ControlNet, SurfaceMode)> {
     if bytes.len() < HEADER_BYTES + CHECKSUM_BYTES {
         return Err(bad(format!(
             "{} bytes: too short for a loopsurf surface (at least {} bytes)",
@@ -112,9 +120,9 @@ fn read_net(bytes: &[u8]) -> Result<ControlNet> {
         )));
     }
     let mode = r.u32();
-    if mode != MODE_APPROXIMATING {
-        return Err(bad(format!("unknown surface mode {mode}")));
-    }
+    let mode = *MODES
+        .get(mode as usize)
+        .ok_or_else(|| bad(format!("unknown surface mode {mode}")))?;
     let counts = [r.u64(), r.u64(), r.u64(), r.u64()];
     let expected = [24u64, 12, 8, 4]
         .iter()
@@ -153,7 +161,7 @@ fn read_net(bytes: &[u8]) -> Result<ControlNet> {
     for v in tagged {
         net.tag_vertex(v).map_err(invalid)?;
     }
-    Ok(net)
+    Ok((net, mode))
 }
 
 /// Sequential little-endian reads; callers have checked the length.
@@ -211,6 +219,19 @@ mod tests {
                 let (a, b) = (s.eval(tri, v, w).unwrap(), t.eval(tri, v, w).unwrap());
                 assert_eq!(a.record().map(f64::to_bits), b.record().map(f64::to_bits));
             }
+        }
+    }
+
+    #[test]
+    fn every_mode_round_trips() {
+        let mut net = net("viking");
+        net.tag_by_angle(30.0).unwrap();
+        for mode in MODES {
+            let s = Surface::with_mode(&net, mode).unwrap();
+            let t = Surface::from_bytes(&s.to_bytes()).unwrap();
+            assert_eq!(t.mode(), mode);
+            let (a, b) = (s.eval(7, 0.2, 0.3).unwrap(), t.eval(7, 0.2, 0.3).unwrap());
+            assert_eq!(a.record().map(f64::to_bits), b.record().map(f64::to_bits));
         }
     }
 

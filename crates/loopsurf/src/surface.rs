@@ -19,6 +19,26 @@ pub const PARAMETER_TOLERANCE: f64 = 1e-12;
 pub struct Surface {
     net: ControlNet,
     evaluator: Evaluator,
+    mode: SurfaceMode,
+    /// Displacement mode only: original point minus limit point, per vertex.
+    displacement: Vec<DVec3>,
+}
+
+/// Which surface a control net defines (seed 000 §3.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceMode {
+    /// The Loop limit surface: smooth, near but not through the net's points.
+    Approximating,
+    /// The Loop limit surface of solved control points x′ with S∞ x′ = x:
+    /// smooth and through the original points; [`Surface::net`] is the
+    /// solved net (see [`crate::interpolate`]).
+    Solve,
+    /// The approximating surface plus, inside each triangle, the linear
+    /// interpolation of its corners' displacements (original point minus
+    /// limit point): through the original points exactly, but only C0
+    /// across control edges. Second derivatives are those of the
+    /// approximating surface (the added field is linear).
+    Displacement,
 }
 
 /// Position and derivatives at one point, in DESIGN.md's record order.
@@ -87,10 +107,43 @@ impl Surface {
     /// Precomputes every triangle's evaluation data (the net is copied).
     /// Fails only when the once-refined net would not fit 32-bit indices.
     pub fn new(net: &ControlNet) -> Result<Surface> {
+        Self::with_mode(net, SurfaceMode::Approximating)
+    }
+
+    /// The surface of `net` in the given mode; `Solve` solves for new
+    /// control points first ([`crate::interpolate::solve`]).
+    pub fn with_mode(net: &ControlNet, mode: SurfaceMode) -> Result<Surface> {
+        match mode {
+            SurfaceMode::Solve => Self::from_net(crate::interpolate::solve(net)?, mode),
+            _ => Self::from_net(net.clone(), mode),
+        }
+    }
+
+    /// Builds the surface of `net` in `mode`, taking `net` as it is (for
+    /// `Solve`, the already solved net).
+    pub(crate) fn from_net(net: ControlNet, mode: SurfaceMode) -> Result<Surface> {
+        let displacement = match mode {
+            SurfaceMode::Displacement => {
+                let limits = net.limit_points();
+                net.points()
+                    .iter()
+                    .zip(limits)
+                    .map(|(&x, l)| x - l)
+                    .collect()
+            }
+            _ => Vec::new(),
+        };
         Ok(Surface {
-            net: net.clone(),
-            evaluator: Evaluator::new(net)?,
+            evaluator: Evaluator::new(&net)?,
+            net,
+            mode,
+            displacement,
         })
+    }
+
+    /// Which surface this is.
+    pub fn mode(&self) -> SurfaceMode {
+        self.mode
     }
 
     /// The control net.
@@ -112,7 +165,35 @@ impl Surface {
     /// Position and first and second derivatives at (v, w) of triangle `tri`.
     pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<Evaluation> {
         let (v, w) = self.check(tri, v, w)?;
-        Ok(match self.evaluator.eval(tri, v, w) {
+        let e = self.eval_approximating(tri, v, w);
+        Ok(if self.displacement.is_empty() {
+            e
+        } else {
+            self.displaced(tri, v, w, e)
+        })
+    }
+
+    /// Adds the linear displacement field of triangle `tri` to `e`. At a
+    /// corner the position is the original point itself, bit for bit.
+    fn displaced(&self, tri: usize, v: f64, w: f64, mut e: Evaluation) -> Evaluation {
+        let c = self.net.triangles()[tri].map(|i| i as usize);
+        let d = c.map(|i| self.displacement[i]);
+        e.x += (1.0 - v - w) * d[0] + v * d[1] + w * d[2];
+        for (k, corner) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
+            if (v, w) == corner {
+                e.x = self.net.points()[c[k]];
+            }
+        }
+        if !e.at_special_vertex {
+            e.xv += d[1] - d[0];
+            e.xw += d[2] - d[0];
+        }
+        e
+    }
+
+    /// The approximating surface at a checked (v, w).
+    fn eval_approximating(&self, tri: usize, v: f64, w: f64) -> Evaluation {
+        match self.evaluator.eval(tri, v, w) {
             Ok([x, xv, xw, xvv, xvw, xww]) => Evaluation {
                 x,
                 xv,
@@ -131,7 +212,7 @@ impl Surface {
                 xww: DVec3::ZERO,
                 at_special_vertex: true,
             },
-        })
+        }
     }
 
     /// Evaluates many points in parallel; fails on the first bad query.
@@ -146,9 +227,16 @@ impl Surface {
     /// of the limit surface there, from the tangent masks of the triangle's
     /// sector: one-sided at creases and corners, where each sector has its
     /// own tangent plane.
+    ///
+    /// In displacement mode the surface is only C0 at special vertices;
+    /// exactly there the normal of the approximating surface is returned.
     pub fn normal(&self, tri: usize, v: f64, w: f64) -> Result<DVec3> {
         let (v, w) = self.check(tri, v, w)?;
         match self.evaluator.eval(tri, v, w) {
+            Ok(_) if !self.displacement.is_empty() => {
+                let e = self.eval(tri, v, w)?;
+                Ok(e.xv.cross(e.xw).normalize_or_zero())
+            }
             Ok(d) => Ok(d[1].cross(d[2]).normalize_or_zero()),
             Err(at) => at.normal.ok_or(Error::NoTangentPlane {
                 vertex: at.vertex,
