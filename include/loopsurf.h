@@ -198,9 +198,9 @@ int ls_normal(const ls_surface *surface, int32_t tri, double v, double w, double
 // the direction, all 8 are 0.
 int ls_curvature(const ls_surface *surface, int32_t tri, double v, double w, double *result);
 
-// The closest point of the limit surface to `xyz`: its triangle, (v, w),
-// position and distance. Not available yet: returns LS_ERR_UNSUPPORTED
-// after checking its arguments.
+// The closest point of the limit surface to `xyz` (the global minimum of
+// the distance, also at hard edges, corners and boundaries): writes its
+// triangle, (v, w), position and distance.
 int ls_snap(const ls_surface *surface,
             const double *xyz,
             int32_t *tri,
@@ -209,8 +209,8 @@ int ls_snap(const ls_surface *surface,
             double *distance);
 
 // `ls_snap` starting from a guess (`tri_guess`, `vw_guess`) near the
-// answer, still returning the global closest point. Not available yet:
-// returns LS_ERR_UNSUPPORTED after checking its arguments.
+// answer, such as a neighbouring point's result: faster, and still the
+// global closest point.
 int ls_snap_guess(const ls_surface *surface,
                   const double *xyz,
                   int32_t tri_guess,

@@ -1,11 +1,9 @@
 //! Surfaces: build, evaluate, curvature, normals, snap, free.
 
 use crate::status::{input, output, run, run_void, Fail};
-use crate::status::{
-    LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE, LS_ERR_UNSUPPORTED,
-};
+use crate::status::{LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE};
 use crate::{ls_net, ls_surface};
-use loopsurf::{Surface, SurfaceMode};
+use loopsurf::{DVec3, Surface, SurfaceMode};
 use rayon::prelude::*;
 use std::ffi::c_int;
 
@@ -212,9 +210,9 @@ pub unsafe extern "C" fn ls_curvature(
     })
 }
 
-/// The closest point of the limit surface to `xyz`: its triangle, (v, w),
-/// position and distance. Not available yet: returns LS_ERR_UNSUPPORTED
-/// after checking its arguments.
+/// The closest point of the limit surface to `xyz` (the global minimum of
+/// the distance, also at hard edges, corners and boundaries): writes its
+/// triangle, (v, w), position and distance.
 #[no_mangle]
 pub unsafe extern "C" fn ls_snap(
     surface: *const ls_surface,
@@ -225,22 +223,17 @@ pub unsafe extern "C" fn ls_snap(
     distance: *mut f64,
 ) -> c_int {
     run("ls_snap", || {
-        input(surface, "surface")?;
-        input(xyz, "xyz")?;
-        output(tri, "tri")?;
-        output(vw, "vw")?;
-        output(xyz_out, "xyz_out")?;
-        output(distance, "distance")?;
-        Err(Fail::new(
-            LS_ERR_UNSUPPORTED,
-            "snapping is not available in this version",
-        ))
+        let surface = &input(surface, "surface")?.0;
+        let p = point(xyz)?;
+        let outs = snap_outputs(tri, vw, xyz_out, distance)?;
+        write_snap(outs, surface.closest_point(p)?);
+        Ok(())
     })
 }
 
 /// `ls_snap` starting from a guess (`tri_guess`, `vw_guess`) near the
-/// answer, still returning the global closest point. Not available yet:
-/// returns LS_ERR_UNSUPPORTED after checking its arguments.
+/// answer, such as a neighbouring point's result: faster, and still the
+/// global closest point.
 #[no_mangle]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ls_snap_guess(
@@ -253,20 +246,53 @@ pub unsafe extern "C" fn ls_snap_guess(
     xyz_out: *mut f64,
     distance: *mut f64,
 ) -> c_int {
-    let _ = tri_guess;
     run("ls_snap_guess", || {
-        input(surface, "surface")?;
-        input(xyz, "xyz")?;
+        let surface = &input(surface, "surface")?.0;
+        let p = point(xyz)?;
         input(vw_guess, "vw_guess")?;
-        output(tri, "tri")?;
-        output(vw, "vw")?;
-        output(xyz_out, "xyz_out")?;
-        output(distance, "distance")?;
-        Err(Fail::new(
-            LS_ERR_UNSUPPORTED,
-            "snapping is not available in this version",
-        ))
+        let (v, w) = (*vw_guess, *vw_guess.add(1));
+        let outs = snap_outputs(tri, vw, xyz_out, distance)?;
+        let t = query(surface, tri_guess, v, w)?;
+        write_snap(outs, surface.snap_near(p, t, v, w)?);
+        Ok(())
     })
+}
+
+type SnapOutputs = (*mut i32, *mut f64, *mut f64, *mut f64);
+
+/// Reads a query point; NaN or infinite coordinates are errors.
+unsafe fn point(xyz: *const f64) -> Result<DVec3, Fail> {
+    input(xyz, "xyz")?;
+    let p = DVec3::new(*xyz, *xyz.add(1), *xyz.add(2));
+    if !p.is_finite() {
+        return Err(Fail::new(
+            LS_ERR_NOT_FINITE,
+            format!("point {:?} is not finite", p.to_array()),
+        ));
+    }
+    Ok(p)
+}
+
+fn snap_outputs(
+    tri: *mut i32,
+    vw: *mut f64,
+    xyz_out: *mut f64,
+    distance: *mut f64,
+) -> Result<SnapOutputs, Fail> {
+    Ok((
+        output(tri, "tri")?,
+        output(vw, "vw")?,
+        output(xyz_out, "xyz_out")?,
+        output(distance, "distance")?,
+    ))
+}
+
+unsafe fn write_snap((tri, vw, xyz, distance): SnapOutputs, s: loopsurf::Snap) {
+    *tri = s.tri as i32;
+    *vw = s.v;
+    *vw.add(1) = s.w;
+    std::ptr::copy_nonoverlapping(s.point.to_array().as_ptr(), xyz, 3);
+    *distance = s.distance;
 }
 
 /// Frees a surface (NULL is ignored). No other thread may still use it.

@@ -6,7 +6,9 @@ mod cmd_hard_edges;
 mod cmd_info;
 mod cmd_interpolate;
 mod cmd_refine;
+mod cmd_snap;
 mod input;
+mod queries;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -31,6 +33,8 @@ enum Command {
     Eval(cmd_eval::Args),
     /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
     Interpolate(cmd_interpolate::Args),
+    /// Closest points: reads `x y z` lines on stdin, writes `tri v w x y z distance` per line.
+    Snap(cmd_snap::Args),
 }
 
 /// Runs `write` against a buffered, locked stdout. A reader that stops
@@ -79,6 +83,7 @@ fn main() -> ExitCode {
         Command::Refine(args) => cmd_refine::run(args),
         Command::Eval(args) => cmd_eval::run(args),
         Command::Interpolate(args) => cmd_interpolate::run(args),
+        Command::Snap(args) => cmd_snap::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -273,3 +273,43 @@ fn interpolate_writes_a_net_whose_surface_passes_through_the_points() {
         "bogus",
     );
 }
+
+#[test]
+fn snap_answers_read_back_bit_exact_and_bad_lines_are_named() {
+    let out = loopsurf_with_stdin(
+        &["snap", "--example", "torus"],
+        "0.3 0.1 0.2\n# a comment\n\n40 -3 7\n",
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 2);
+    for (line, p) in lines.iter().zip([[0.3, 0.1, 0.2], [40.0, -3.0, 7.0]]) {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        assert_eq!(f.len(), 7, "{line}");
+        let tri: usize = f[0].parse().unwrap();
+        let n: Vec<f64> = f[1..].iter().map(|x| x.parse().unwrap()).collect();
+        // The point is the surface at (tri, v, w), bit for bit, and the
+        // distance is its distance to the query.
+        let e = loopsurf_with_stdin(
+            &["eval", "--example", "torus"],
+            &format!("{tri} {:e} {:e}\n", n[0], n[1]),
+        );
+        let x: Vec<f64> = text(&e.stdout)
+            .split_whitespace()
+            .take(3)
+            .map(|x| x.parse().unwrap())
+            .collect();
+        assert_eq!(x, n[2..5].to_vec());
+        let d = ((x[0] - p[0]).powi(2) + (x[1] - p[1]).powi(2) + (x[2] - p[2]).powi(2)).sqrt();
+        assert!((d - n[5]).abs() <= 1e-15 * d.max(1.0));
+    }
+    assert_clean_failure(
+        &loopsurf_with_stdin(&["snap", "--example", "torus"], "0 0 0\n1 2\n"),
+        "line 2",
+    );
+    assert_clean_failure(
+        &loopsurf_with_stdin(&["snap", "--example", "torus"], "nan 0 0\n"),
+        "line 1",
+    );
+}

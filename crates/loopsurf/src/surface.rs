@@ -8,6 +8,7 @@
 use crate::error::{Error, Result};
 use crate::eval::surface::Evaluator;
 use crate::net::ControlNet;
+use crate::snap::SnapIndex;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -22,6 +23,8 @@ pub struct Surface {
     mode: SurfaceMode,
     /// Displacement mode only: original point minus limit point, per vertex.
     displacement: Vec<DVec3>,
+    /// Built on the first snap, so evaluation-only users never pay for it.
+    snap_index: std::sync::OnceLock<SnapIndex>,
 }
 
 /// Which surface a control net defines (seed 000 §3.3).
@@ -138,6 +141,24 @@ impl Surface {
             net,
             mode,
             displacement,
+            snap_index: std::sync::OnceLock::new(),
+        })
+    }
+
+    /// The snapping index, built on first use.
+    pub(crate) fn snap_index(&self) -> &SnapIndex {
+        self.snap_index.get_or_init(|| SnapIndex::new(self))
+    }
+
+    /// The displacements of triangle `tri`'s corners (zero unless in
+    /// displacement mode).
+    pub(crate) fn displacements_of(&self, tri: usize) -> [DVec3; 3] {
+        let c = self.net.triangles()[tri];
+        c.map(|i| {
+            self.displacement
+                .get(i as usize)
+                .copied()
+                .unwrap_or(DVec3::ZERO)
         })
     }
 

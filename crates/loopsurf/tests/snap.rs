@@ -1,0 +1,318 @@
+//! Snapping against a brute-force reference that shares no code with the
+//! search: the exact dyadic limit points of a level-3 refinement as dense
+//! samples, the best few polished by a derivative-free pattern search.
+
+mod common;
+
+use common::cgal_mesh;
+use loopsurf::{ControlNet, DVec3, Snap, Surface, SurfaceMode};
+
+/// Deterministic pseudo-random numbers in [0, 1).
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn point_in(&mut self, lo: DVec3, hi: DVec3) -> DVec3 {
+        lo + (hi - lo) * DVec3::new(self.next(), self.next(), self.next())
+    }
+}
+
+struct Reference {
+    samples: Vec<(DVec3, usize, f64, f64)>,
+}
+
+impl Reference {
+    fn new(net: &ControlNet) -> Reference {
+        let refined = net.refine_uniform(3).unwrap();
+        let samples = refined
+            .limit_points()
+            .into_iter()
+            .zip(refined.origins())
+            .filter_map(|(x, o)| o.map(|o| (x, o.tri as usize, o.v, o.w)))
+            .collect();
+        Reference { samples }
+    }
+
+    /// The smallest distance from p to the surface, to ~1e-12 of the model.
+    fn distance(&self, surface: &Surface, p: DVec3) -> f64 {
+        let mut order: Vec<(f64, usize)> = self
+            .samples
+            .iter()
+            .enumerate()
+            .map(|(i, s)| ((s.0 - p).length_squared(), i))
+            .collect();
+        let k = 12.min(order.len());
+        order.select_nth_unstable_by(k - 1, |a, b| a.0.total_cmp(&b.0));
+        order[..k]
+            .iter()
+            .map(|&(_, i)| {
+                let (_, tri, v, w) = self.samples[i];
+                pattern_search(surface, p, tri, v, w)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Compass search over (v, w) inside one triangle: no derivatives.
+fn pattern_search(surface: &Surface, p: DVec3, tri: usize, mut v: f64, mut w: f64) -> f64 {
+    let dist = |v: f64, w: f64| (surface.eval(tri, v, w).unwrap().x - p).length();
+    let mut best = dist(v, w);
+    let mut h = 1.0 / 8.0;
+    let dirs = [
+        (1.0, 0.0),
+        (-1.0, 0.0),
+        (0.0, 1.0),
+        (0.0, -1.0),
+        (1.0, -1.0),
+        (-1.0, 1.0),
+    ];
+    while h > 1e-11 {
+        let mut improved = false;
+        for (dv, dw) in dirs {
+            let (mut nv, mut nw) = ((v + h * dv).max(0.0), (w + h * dw).max(0.0));
+            if nv + nw > 1.0 {
+                let s = nv + nw;
+                (nv, nw) = (nv / s, nw / s);
+            }
+            let d = dist(nv, nw);
+            if d < best {
+                (best, v, w, improved) = (d, nv, nw, true);
+            }
+        }
+        if !improved {
+            h *= 0.5;
+        }
+    }
+    best
+}
+
+fn bbox(net: &ControlNet) -> (DVec3, DVec3) {
+    let lo = net.points().iter().fold(DVec3::INFINITY, |a, &b| a.min(b));
+    let hi = net
+        .points()
+        .iter()
+        .fold(DVec3::NEG_INFINITY, |a, &b| a.max(b));
+    (lo, hi)
+}
+
+/// The returned point is the surface at its parameters, and at an interior
+/// minimiser the residual is normal to the surface.
+fn check_consistent(surface: &Surface, p: DVec3, s: &Snap, diagonal: f64, what: &str) {
+    let e = surface.eval(s.tri, s.v, s.w).unwrap();
+    assert_eq!(e.x, s.point, "{what}");
+    assert!(
+        ((s.point - p).length() - s.distance).abs() <= 1e-15 * diagonal,
+        "{what}"
+    );
+    let inside = s.v > 1e-6 && s.w > 1e-6 && s.v + s.w < 1.0 - 1e-6;
+    let r = p - s.point;
+    if inside && !e.at_special_vertex && r.length() > 1e-6 * diagonal {
+        let cosines = [
+            r.dot(e.xv) / (r.length() * e.xv.length()),
+            r.dot(e.xw) / (r.length() * e.xw.length()),
+        ];
+        assert!(
+            cosines.iter().all(|c| c.abs() < 1e-7),
+            "{what}: residual not normal: {cosines:?}"
+        );
+    }
+}
+
+fn check_mesh(name: &str, net: &ControlNet, queries: usize) {
+    let surface = Surface::new(net).unwrap();
+    let reference = Reference::new(net);
+    let diagonal = net.bbox_diagonal();
+    let (lo, hi) = bbox(net);
+    let margin = 0.2 * (hi - lo);
+    let mut rng = Lcg(7);
+    let mut points = Vec::new();
+    for _ in 0..queries {
+        // In and around the bounding box.
+        points.push(("box", rng.point_in(lo - margin, hi + margin)));
+        // Within 1% of the diagonal of a random surface point, either side.
+        let t = (rng.next() * net.triangles().len() as f64) as usize;
+        let (v, w) = (rng.next() * 0.5, rng.next() * 0.5);
+        let e = surface.eval(t, v, w).unwrap();
+        let n = e.xv.cross(e.xw).normalize_or_zero();
+        points.push(("near", e.x + (rng.next() - 0.5) * 0.02 * diagonal * n));
+        // A hundred times the model size away.
+        let dir = (rng.point_in(DVec3::splat(-1.0), DVec3::ONE)).normalize();
+        points.push(("far", 0.5 * (lo + hi) + 100.0 * diagonal * dir));
+    }
+    for (i, (kind, p)) in points.into_iter().enumerate() {
+        let what = format!("{name}: {kind} point {i} {p:?}");
+        let s = surface.closest_point(p).unwrap();
+        check_consistent(&surface, p, &s, diagonal, &what);
+        let r = reference.distance(&surface, p);
+        assert!(
+            (s.distance - r).abs() <= 1e-10 * diagonal,
+            "{what}: snap {} vs reference {r} ({:e} of the diagonal)",
+            s.distance,
+            (s.distance - r) / diagonal
+        );
+        // From a hint elsewhere, the same global answer.
+        let hint = surface
+            .snap_near(p, i % net.triangles().len(), 0.2, 0.2)
+            .unwrap();
+        assert!(
+            (hint.distance - s.distance).abs() <= 1e-10 * diagonal,
+            "{what}: snap_near"
+        );
+    }
+}
+
+fn example(name: &str, angle: Option<f64>) -> ControlNet {
+    let e = loopsurf::examples::by_name(name).unwrap();
+    let mut net = ControlNet::from_arrays(e.points, &e.tris).unwrap();
+    if let Some(a) = angle {
+        net.tag_by_angle(a).unwrap();
+    }
+    net
+}
+
+#[test]
+fn points_on_the_surface_snap_to_themselves() {
+    let cases = [
+        ("torus", example("torus", None), SurfaceMode::Approximating),
+        (
+            "cube",
+            example("cube", Some(30.0)),
+            SurfaceMode::Approximating,
+        ),
+        (
+            "viking",
+            example("viking", Some(30.0)),
+            SurfaceMode::Approximating,
+        ),
+        (
+            "viking, displacement",
+            example("viking", Some(30.0)),
+            SurfaceMode::Displacement,
+        ),
+        (
+            "sphere, solved",
+            example("sphere", None),
+            SurfaceMode::Solve,
+        ),
+    ];
+    for (name, net, mode) in cases {
+        let surface = Surface::with_mode(&net, mode).unwrap();
+        let diagonal = net.bbox_diagonal();
+        let mut rng = Lcg(11);
+        for _ in 0..200 {
+            let t = (rng.next() * net.triangles().len() as f64) as usize;
+            let (v, w) = (rng.next(), rng.next());
+            let (v, w) = if v + w > 1.0 {
+                (1.0 - v, 1.0 - w)
+            } else {
+                (v, w)
+            };
+            let x = surface.eval(t, v, w).unwrap().x;
+            let s = surface.closest_point(x).unwrap();
+            assert!(
+                s.distance <= 1e-13 * diagonal,
+                "{name}: triangle {t} ({v}, {w}): {:e}",
+                s.distance / diagonal
+            );
+            let near = surface
+                .snap_near(x, t, (v + 0.1).min(0.5), w * 0.5)
+                .unwrap();
+            assert!(near.distance <= 1e-13 * diagonal, "{name}: snap_near");
+        }
+    }
+}
+
+#[test]
+fn synthetic_shapes_match_the_reference() {
+    check_mesh("torus", &example("torus", None), 15);
+    check_mesh(
+        "cube with hard edges and corners",
+        &example("cube", Some(30.0)),
+        15,
+    );
+    check_mesh("viking", &example("viking", Some(30.0)), 10);
+    check_mesh("open disk (boundary)", &example("open-disk", None), 15);
+}
+
+#[test]
+fn cgal_meshes_match_the_reference() {
+    for (name, angle) in [("fandisk.off", Some(30.0)), ("pig.off", None)] {
+        let Some(path) = cgal_mesh(name) else {
+            continue;
+        };
+        let mut net = ControlNet::read(path).unwrap();
+        if let Some(a) = angle {
+            net.tag_by_angle(a).unwrap();
+        }
+        check_mesh(name, &net, 8);
+    }
+}
+
+#[test]
+fn concave_and_equidistant_points() {
+    // The torus centre is equidistant from the whole inner equator; any
+    // point of it is a correct answer, at the reference distance.
+    let net = example("torus", None);
+    let surface = Surface::new(&net).unwrap();
+    let reference = Reference::new(&net);
+    let (lo, hi) = bbox(&net);
+    for p in [
+        0.5 * (lo + hi),
+        0.5 * (lo + hi) + DVec3::new(0.0, 0.0, 0.01),
+    ] {
+        let s = surface.closest_point(p).unwrap();
+        let r = reference.distance(&surface, p);
+        assert!(
+            (s.distance - r).abs() <= 1e-10 * net.bbox_diagonal(),
+            "{p:?}: {} vs {r}",
+            s.distance
+        );
+    }
+}
+
+#[test]
+fn thin_features_and_points_between_two_sheets() {
+    // A sphere flattened to a 2%-thick disc: two sheets close together.
+    let e = loopsurf::examples::by_name("sphere").unwrap();
+    let points: Vec<DVec3> = e
+        .points
+        .iter()
+        .map(|p| DVec3::new(p.x, p.y, 0.02 * p.z))
+        .collect();
+    let net = ControlNet::from_arrays(points, &e.tris).unwrap();
+    let surface = Surface::new(&net).unwrap();
+    let reference = Reference::new(&net);
+    let diagonal = net.bbox_diagonal();
+    let mut rng = Lcg(5);
+    for _ in 0..20 {
+        // In the mid-plane (equidistant from both sheets) and just off it.
+        let (x, y) = (rng.next() - 0.5, rng.next() - 0.5);
+        for z in [0.0, 0.001, -0.003] {
+            let p = DVec3::new(x, y, z);
+            let s = surface.closest_point(p).unwrap();
+            let r = reference.distance(&surface, p);
+            assert!(
+                (s.distance - r).abs() <= 1e-10 * diagonal,
+                "{p:?}: {} vs {r}",
+                s.distance
+            );
+            check_consistent(&surface, p, &s, diagonal, "flat disc");
+        }
+    }
+}
+
+#[test]
+fn non_finite_points_and_bad_hints_are_errors() {
+    let net = example("sphere", None);
+    let surface = Surface::new(&net).unwrap();
+    assert!(surface
+        .closest_point(DVec3::new(f64::NAN, 0.0, 0.0))
+        .is_err());
+    assert!(surface.snap_near(DVec3::ZERO, 99999, 0.1, 0.1).is_err());
+    assert!(surface.snap_near(DVec3::ZERO, 0, 0.9, 0.9).is_err());
+}
