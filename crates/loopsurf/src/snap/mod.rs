@@ -3,12 +3,13 @@
 //!
 //! Every Loop mask has non-negative weights summing to one, so a
 //! triangle's patch lies in the convex hull of its support: the control
-//! points of its corners' one-rings (seed 000 §2). One subdivision step
-//! later the same holds for each of its four children, so the patch also
-//! lies in the hull of the once-refined points around it — its corners'
-//! vertex points and the edge points of the edges at its corners — which
-//! hugs the surface four times closer. That gives two rigorous lower
-//! bounds on the distance from p to a patch:
+//! points of its corners' one-rings (seed 000 §2). After a subdivision
+//! step the same holds for each of its four children; after two steps, for
+//! each of its sixteen grandchildren. So the patch lies in the hull of the
+//! twice-refined points around its children's corners — the vertex points
+//! of those six level-1 vertices and the edge points of the level-1 edges at
+//! them — which hugs the surface far closer than the control points do. That
+//! gives two rigorous lower bounds on the distance from p to a patch:
 //!
 //! * the distance to the axis-aligned box of the support, which an R-tree
 //!   ([`rstar`]) visits in increasing order;
@@ -50,11 +51,13 @@ pub(crate) struct SnapIndex {
     tree: RTree<Leaf>,
     /// The surface point at every control vertex (corner of its triangles).
     anchors: Vec<DVec3>,
-    /// The once-refined points: vertex points, then one point per edge.
+    /// The twice-refined points: level-1 vertices, then one per level-1 edge.
     refined: Vec<DVec3>,
-    /// The edges at each control vertex (CSR).
+    /// The once-refined topology's edges at each of its vertices (CSR).
     vertex_edge_start: Vec<u32>,
     vertex_edges: Vec<u32>,
+    /// Vertices of the once-refined net.
+    nv1: usize,
 }
 
 impl SnapIndex {
@@ -66,19 +69,23 @@ impl SnapIndex {
                 anchors[c[k] as usize] = surface.eval(t, v, w).expect("corners are inside").x;
             }
         }
-        let topo = net.topology();
-        let refined = crate::refine::subdivide_points(topo, net.features(), net.points());
-        let mut vertex_edge_start = vec![0u32; net.points().len() + 1];
-        for &[a, b] in topo.edges() {
+        let (topo, features) = (net.topology(), net.features());
+        let topo1 = topo.refined();
+        let features1 = features.refined(topo);
+        let points1 = crate::refine::subdivide_points(topo, features, net.points());
+        let refined = crate::refine::subdivide_points(&topo1, &features1, &points1);
+        let nv1 = topo1.num_vertices();
+        let mut vertex_edge_start = vec![0u32; nv1 + 1];
+        for &[a, b] in topo1.edges() {
             vertex_edge_start[a as usize + 1] += 1;
             vertex_edge_start[b as usize + 1] += 1;
         }
-        for v in 0..net.points().len() {
+        for v in 0..nv1 {
             vertex_edge_start[v + 1] += vertex_edge_start[v];
         }
         let mut fill = vertex_edge_start.clone();
-        let mut vertex_edges = vec![0u32; 2 * topo.edges().len()];
-        for (e, &[a, b]) in topo.edges().iter().enumerate() {
+        let mut vertex_edges = vec![0u32; 2 * topo1.edges().len()];
+        for (e, &[a, b]) in topo1.edges().iter().enumerate() {
             for v in [a, b] {
                 vertex_edges[fill[v as usize] as usize] = e as u32;
                 fill[v as usize] += 1;
@@ -90,6 +97,7 @@ impl SnapIndex {
             refined,
             vertex_edge_start,
             vertex_edges,
+            nv1,
         };
         // Boxes are padded by round-off so that evaluated points, computed
         // in floating point, never fall outside them.
@@ -113,17 +121,20 @@ impl SnapIndex {
         index
     }
 
-    /// Calls `f` with every once-refined point whose hull holds the patch of
-    /// `tri`: its corners' vertex points and the edge points of every edge
-    /// at a corner (the edges of `tri` twice).
+    /// Calls `f` with every twice-refined point whose hull holds the patch
+    /// of `tri`: for each corner of its four children (its own corners and
+    /// the level-1 vertices on its edges), the vertex point and the edge
+    /// points of the level-1 edges there (some more than once).
     fn for_each_support_point(&self, surface: &Surface, tri: usize, mut f: impl FnMut(DVec3)) {
-        let nv = surface.net().points().len();
-        for &c in &surface.net().triangles()[tri] {
-            let c = c as usize;
-            f(self.refined[c]);
-            let edges = self.vertex_edge_start[c] as usize..self.vertex_edge_start[c + 1] as usize;
+        let net = surface.net();
+        let nv = net.points().len();
+        let corners = net.triangles()[tri].map(|c| c as usize);
+        let mids = net.topology().triangle_edges()[tri].map(|e| nv + e as usize);
+        for u in corners.into_iter().chain(mids) {
+            f(self.refined[u]);
+            let edges = self.vertex_edge_start[u] as usize..self.vertex_edge_start[u + 1] as usize;
             for &e in &self.vertex_edges[edges] {
-                f(self.refined[nv + e as usize]);
+                f(self.refined[self.nv1 + e as usize]);
             }
         }
     }
