@@ -33,7 +33,7 @@ const MAX_HOPS: usize = 64;
 const STEP_TOLERANCE: f64 = 1e-15;
 /// A Newton step this short is the last one needed (the parameter domain
 /// has size 1; the error after it is of the order of its square).
-const CONVERGED_STEP: f64 = 1e-9;
+const CONVERGED_STEP: f64 = 1e-7;
 const MAX_HALVINGS: usize = 30;
 
 /// The three constraints of the parameter triangle as n · (v, w) ≥ c,
@@ -155,8 +155,10 @@ fn descend_in(surface: &Surface, p: DVec3, tri: usize, start: DVec2) -> (DVec2, 
             }
         }
         // Close to a minimiser Newton converges quadratically: a step this
-        // small leaves an error below round-off, so take it and stop.
-        if alpha * step.length() <= CONVERGED_STEP {
+        // small, or one whose predicted gain is at round-off level, leaves
+        // an error below round-off, so take it and stop.
+        let slope = g.dot(step).min(0.0);
+        if alpha * step.length() <= CONVERGED_STEP || -alpha * slope <= 1e-14 * f {
             let (t_uv, t_e) = eval_at(surface, tri, clamp(uv + alpha * step));
             if (t_e.x - p).length_squared() <= 2.0 * f {
                 return (t_uv, crossing);
@@ -164,7 +166,6 @@ fn descend_in(surface: &Surface, p: DVec3, tri: usize, start: DVec2) -> (DVec2, 
             return (uv, crossing);
         }
         // Backtrack until f decreases enough (Armijo).
-        let slope = g.dot(step).min(0.0);
         let mut moved = None;
         for _ in 0..MAX_HALVINGS {
             let (t_uv, t_e) = eval_at(surface, tri, clamp(uv + alpha * step));
