@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(cmake g++ gfortran libopenmesh-dev libosd-dev openmpi-bin libopenmpi-dev libcgal-demo)
+packages=(cmake g++ gfortran pkgconf libopenmesh-dev libosd-dev openmpi-bin libopenmpi-dev libcgal-demo)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

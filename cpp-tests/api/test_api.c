@@ -1,0 +1,382 @@
+/* Every function of the C ABI, on its success path and on every error
+ * path: NULL pointers, bad indices, parameters out of range, NaN, bad
+ * files, damaged and truncated streams. Outputs must be untouched on
+ * failure. Usage: test_api DATA_DIR */
+#include <loopsurf.h>
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int failures = 0;
+#define CHECK(cond)                                                                   \
+    do {                                                                              \
+        if (!(cond)) {                                                                \
+            fprintf(stderr, "%s:%d: FAILED: %s (last error: %s)\n", __FILE__, __LINE__, \
+                    #cond, ls_last_error());                                          \
+            failures++;                                                               \
+        }                                                                             \
+    } while (0)
+#define EXPECT(call, status) CHECK((call) == (status))
+
+static const double SENTINEL = -12345.678;
+
+/* An octahedron: six valence-4 vertices, eight triangles. */
+static const double OCTA_XYZ[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+static const int32_t OCTA_TRIS[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
+                                    2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+
+static void write_file(const char* path, const char* text) {
+    FILE* f = fopen(path, "w");
+    fputs(text, f);
+    fclose(f);
+}
+
+static ls_surface* octahedron(ls_net** net_out) {
+    ls_net* net = NULL;
+    ls_surface* surface = NULL;
+    EXPECT(ls_net_from_arrays(6, OCTA_XYZ, 8, OCTA_TRIS, &net), LS_OK);
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+    if (net_out) {
+        *net_out = net;
+    } else {
+        ls_net_free(net);
+    }
+    return surface;
+}
+
+static void test_version_and_strings(void) {
+    int major = -1, minor = -1, patch = -1;
+    ls_version(&major, &minor, &patch);
+    CHECK(major == 0 && minor == 1 && patch >= 0);
+    ls_version(NULL, NULL, NULL); /* tolerated */
+    const int codes[] = {LS_OK, LS_ERR_NULL_POINTER, LS_ERR_IO, LS_ERR_PARSE, LS_ERR_NON_MANIFOLD,
+                         LS_ERR_DEGENERATE, LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_PARAMETER_OUT_OF_RANGE,
+                         LS_ERR_NOT_FINITE, LS_ERR_UNSUPPORTED, LS_ERR_BAD_STREAM,
+                         LS_ERR_INVALID_ARGUMENT, LS_ERR_INTERNAL};
+    const char* names[] = {"LS_OK", "LS_ERR_NULL_POINTER", "LS_ERR_IO", "LS_ERR_PARSE",
+                           "LS_ERR_NON_MANIFOLD", "LS_ERR_DEGENERATE", "LS_ERR_INDEX_OUT_OF_RANGE",
+                           "LS_ERR_PARAMETER_OUT_OF_RANGE", "LS_ERR_NOT_FINITE", "LS_ERR_UNSUPPORTED",
+                           "LS_ERR_BAD_STREAM", "LS_ERR_INVALID_ARGUMENT", "LS_ERR_INTERNAL"};
+    for (int i = 0; i < 13; i++) {
+        const char* s = ls_status_string(codes[i]);
+        CHECK(s != NULL && strncmp(s, names[i], strlen(names[i])) == 0 && s[strlen(names[i])] == ':');
+    }
+    CHECK(strstr(ls_status_string(-99), "unknown") != NULL);
+    CHECK(strstr(ls_status_string(7), "unknown") != NULL);
+}
+
+static void test_nets(const char* data_dir) {
+    ls_net* net = (ls_net*)&SENTINEL; /* must stay untouched on failure */
+    ls_net* const untouched = net;
+    char path[4096];
+
+    /* Loading: NULLs, a missing file, an unknown extension, a malformed
+     * file, a non-manifold mesh, a degenerate triangle, a NaN. */
+    EXPECT(ls_net_load(NULL, &net), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_load("x.off", NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_load("/nonexistent/mesh.off", &net), LS_ERR_IO);
+    CHECK(strstr(ls_last_error(), "/nonexistent/mesh.off") != NULL);
+    CHECK(strncmp(ls_last_error(), "ls_net_load:", 12) == 0);
+    write_file("api_test.xyz", "nothing");
+    EXPECT(ls_net_load("api_test.xyz", &net), LS_ERR_IO);
+    write_file("api_test_bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n");
+    EXPECT(ls_net_load("api_test_bad.off", &net), LS_ERR_PARSE);
+    CHECK(strstr(ls_last_error(), "api_test_bad.off") != NULL && strstr(ls_last_error(), "5") != NULL);
+    write_file("api_test_trunc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
+    EXPECT(ls_net_load("api_test_trunc.off", &net), LS_ERR_PARSE);
+    /* Three triangles on one edge. */
+    write_file("api_test_nm.off",
+               "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+    EXPECT(ls_net_load("api_test_nm.off", &net), LS_ERR_NON_MANIFOLD);
+    CHECK(strstr(ls_last_error(), "non-manifold edge") != NULL);
+    write_file("api_test_flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
+    EXPECT(ls_net_load("api_test_flat.off", &net), LS_ERR_DEGENERATE);
+    CHECK(strstr(ls_last_error(), "triangle 0") != NULL);
+    CHECK(net == untouched);
+
+    /* From arrays. */
+    const double nan_xyz[] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
+    const double tri_xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const int32_t one[] = {0, 1, 2}, bad_index[] = {0, 1, 3}, negative[] = {0, -1, 2}, repeated[] = {0, 1, 1};
+    EXPECT(ls_net_from_arrays(3, NULL, 1, one, &net), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_from_arrays(3, tri_xyz, 1, NULL, &net), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_from_arrays(3, tri_xyz, 1, one, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_from_arrays(3, tri_xyz, 1, bad_index, &net), LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "triangle 0") != NULL && strstr(ls_last_error(), "3") != NULL);
+    EXPECT(ls_net_from_arrays(3, tri_xyz, 1, negative, &net), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_net_from_arrays(3, tri_xyz, 1, repeated, &net), LS_ERR_DEGENERATE);
+    EXPECT(ls_net_from_arrays(3, nan_xyz, 1, one, &net), LS_ERR_NOT_FINITE);
+    CHECK(strstr(ls_last_error(), "vertex 2") != NULL);
+    EXPECT(ls_net_from_arrays(0, tri_xyz, 0, one, &net), LS_ERR_DEGENERATE);
+    EXPECT(ls_net_from_arrays(SIZE_MAX / 2, tri_xyz, 1, one, &net), LS_ERR_INVALID_ARGUMENT);
+    CHECK(net == untouched);
+    EXPECT(ls_net_from_arrays(3, tri_xyz, 1, one, &net), LS_OK);
+    CHECK(net != untouched && net != NULL);
+    ls_net_free(net);
+
+    /* Tagging and counts on the octahedron. */
+    EXPECT(ls_net_from_arrays(6, OCTA_XYZ, 8, OCTA_TRIS, &net), LS_OK);
+    size_t nv = 7, nt = 7, nh = 7;
+    EXPECT(ls_net_counts(NULL, &nv, &nt, &nh), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
+    CHECK(nv == 6 && nt == 8 && nh == 0);
+    EXPECT(ls_net_counts(net, NULL, NULL, NULL), LS_OK);
+    EXPECT(ls_net_tag_edge(NULL, 0, 2), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_tag_edge(net, 0, 6), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_net_tag_edge(net, -1, 2), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_net_tag_edge(net, 0, 1), LS_ERR_INVALID_ARGUMENT); /* opposite vertices */
+    CHECK(strstr(ls_last_error(), "(0, 1)") != NULL);
+    EXPECT(ls_net_tag_edge(net, 0, 2), LS_OK);
+    EXPECT(ls_net_tag_edge(net, 2, 0), LS_OK); /* already hard: fine */
+    EXPECT(ls_net_tag_vertex(NULL, 0), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_tag_vertex(net, 6), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_net_tag_vertex(net, 5), LS_OK);
+    size_t ntagged = 77;
+    EXPECT(ls_net_tag_by_angle(NULL, 30, &ntagged), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_tag_by_angle(net, NAN, &ntagged), LS_ERR_NOT_FINITE);
+    EXPECT(ls_net_tag_by_angle(net, -5, &ntagged), LS_ERR_INVALID_ARGUMENT);
+    CHECK(ntagged == 77);
+    EXPECT(ls_net_tag_by_angle(net, 60, &ntagged), LS_OK); /* octahedron dihedral turn: 70.5° */
+    CHECK(ntagged == 11);                                   /* 12 edges, one tagged already */
+    EXPECT(ls_net_tag_by_angle(net, 60, NULL), LS_OK);
+    EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
+    CHECK(nh == 12);
+    ls_net_free(net);
+    ls_net_free(NULL);
+
+    /* A real mesh with boundaries. */
+    snprintf(path, sizeof path, "%s/pig.off", data_dir);
+    EXPECT(ls_net_load(path, &net), LS_OK);
+    EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
+    CHECK(nv == 468 && nt == 891 && nh == 55); /* its 7 boundary loops are hard */
+    ls_net_free(net);
+}
+
+static void test_queries(void) {
+    ls_net* net = NULL;
+    ls_surface* surface = octahedron(&net);
+    double r[18], many[4 * 18], k[8], n[3];
+    for (int i = 0; i < 18; i++) r[i] = SENTINEL;
+    for (int i = 0; i < 8; i++) k[i] = SENTINEL;
+
+    EXPECT(ls_surface_build(NULL, &surface), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_build(net, NULL), LS_ERR_NULL_POINTER);
+    size_t nt = 0;
+    EXPECT(ls_surface_num_triangles(NULL, &nt), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_num_triangles(surface, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_num_triangles(surface, &nt), LS_OK);
+    CHECK(nt == 8);
+
+    /* Evaluation errors leave the result untouched. */
+    EXPECT(ls_evaluate(NULL, 0, 0.1, 0.1, r), LS_ERR_NULL_POINTER);
+    EXPECT(ls_evaluate(surface, 0, 0.1, 0.1, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_evaluate(surface, 8, 0.1, 0.1, r), LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "triangle 8") != NULL);
+    EXPECT(ls_evaluate(surface, -1, 0.1, 0.1, r), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_evaluate(surface, 0, -0.01, 0.1, r), LS_ERR_PARAMETER_OUT_OF_RANGE);
+    EXPECT(ls_evaluate(surface, 0, 0.1, -0.01, r), LS_ERR_PARAMETER_OUT_OF_RANGE);
+    EXPECT(ls_evaluate(surface, 0, 0.6, 0.5, r), LS_ERR_PARAMETER_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "outside the triangle") != NULL);
+    EXPECT(ls_evaluate(surface, 0, NAN, 0.1, r), LS_ERR_NOT_FINITE);
+    EXPECT(ls_evaluate(surface, 0, 0.1, INFINITY, r), LS_ERR_NOT_FINITE);
+    for (int i = 0; i < 18; i++) CHECK(r[i] == SENTINEL);
+    EXPECT(ls_evaluate(surface, 0, -1e-14, 1.0 + 1e-14, r), LS_OK); /* round-off is clamped */
+
+    /* Batch equals one by one, bit for bit; a bad query names its index. */
+    const int32_t tris[4] = {0, 3, 5, 7};
+    const double vw[8] = {0.1, 0.2, 0.3, 0.3, 0, 0, 0.5, 0.5};
+    EXPECT(ls_evaluate_many(surface, 4, tris, vw, many), LS_OK);
+    for (int i = 0; i < 4; i++) {
+        EXPECT(ls_evaluate(surface, tris[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
+        CHECK(memcmp(r, many + 18 * i, sizeof r) == 0);
+    }
+    EXPECT(ls_evaluate_many(surface, 0, NULL, NULL, NULL), LS_OK);
+    EXPECT(ls_evaluate_many(NULL, 4, tris, vw, many), LS_ERR_NULL_POINTER);
+    EXPECT(ls_evaluate_many(surface, 4, NULL, vw, many), LS_ERR_NULL_POINTER);
+    EXPECT(ls_evaluate_many(surface, 4, tris, NULL, many), LS_ERR_NULL_POINTER);
+    EXPECT(ls_evaluate_many(surface, 4, tris, vw, NULL), LS_ERR_NULL_POINTER);
+    const int32_t bad_tris[4] = {0, 3, 99, 7};
+    for (int i = 0; i < 4 * 18; i++) many[i] = SENTINEL;
+    EXPECT(ls_evaluate_many(surface, 4, bad_tris, vw, many), LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "query 2") != NULL);
+    for (int i = 0; i < 4 * 18; i++) CHECK(many[i] == SENTINEL);
+
+    /* Normal: unit, along Xv x Xw; curvature: convex surface, k1 >= k2 > 0. */
+    EXPECT(ls_normal(NULL, 0, 0.2, 0.2, n), LS_ERR_NULL_POINTER);
+    EXPECT(ls_normal(surface, 0, 0.2, 0.2, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_normal(surface, 9, 0.2, 0.2, n), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_normal(surface, 0, 0.2, NAN, n), LS_ERR_NOT_FINITE);
+    EXPECT(ls_normal(surface, 0, 0.2, 0.2, n), LS_OK);
+    EXPECT(ls_evaluate(surface, 0, 0.2, 0.2, r), LS_OK);
+    double c[3] = {r[4] * r[8] - r[5] * r[7], r[5] * r[6] - r[3] * r[8], r[3] * r[7] - r[4] * r[6]};
+    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    CHECK(fabs(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1) < 1e-14);
+    for (int i = 0; i < 3; i++) CHECK(fabs(n[i] - c[i] / len) < 1e-14);
+    CHECK(n[0] * r[0] + n[1] * r[1] + n[2] * r[2] > 0); /* outward */
+    EXPECT(ls_normal(surface, 0, 0, 0, n), LS_OK);      /* exactly at a valence-4 vertex */
+    EXPECT(ls_curvature(NULL, 0, 0.2, 0.2, k), LS_ERR_NULL_POINTER);
+    EXPECT(ls_curvature(surface, 0, 0.2, 0.2, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_curvature(surface, 0, 0.7, 0.7, k), LS_ERR_PARAMETER_OUT_OF_RANGE);
+    for (int i = 0; i < 8; i++) CHECK(k[i] == SENTINEL);
+    EXPECT(ls_curvature(surface, 0, 0.2, 0.2, k), LS_OK);
+    CHECK(k[0] >= k[4] && k[4] > 0);
+
+    /* Snapping: a surface point snaps onto itself; a far point's answer is
+     * consistent; a guess gives the same global answer. */
+    int32_t tri = -7;
+    double uv[2] = {SENTINEL, SENTINEL}, x[3], d = SENTINEL;
+    const double p[3] = {r[0], r[1], r[2]};
+    EXPECT(ls_snap(NULL, p, &tri, uv, x, &d), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap(surface, NULL, &tri, uv, x, &d), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap(surface, p, NULL, uv, x, &d), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap(surface, p, &tri, NULL, x, &d), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap(surface, p, &tri, uv, NULL, &d), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap(surface, p, &tri, uv, x, NULL), LS_ERR_NULL_POINTER);
+    const double nan_point[3] = {0, NAN, 0};
+    EXPECT(ls_snap(surface, nan_point, &tri, uv, x, &d), LS_ERR_NOT_FINITE);
+    CHECK(tri == -7 && uv[0] == SENTINEL && d == SENTINEL);
+    EXPECT(ls_snap(surface, p, &tri, uv, x, &d), LS_OK);
+    CHECK(d < 1e-14 && tri >= 0 && tri < 8);
+    const double far[3] = {10, 20, 30};
+    EXPECT(ls_snap(surface, far, &tri, uv, x, &d), LS_OK);
+    EXPECT(ls_evaluate(surface, tri, uv[0], uv[1], r), LS_OK);
+    CHECK(memcmp(r, x, sizeof x) == 0);
+    CHECK(fabs(d - sqrt((x[0] - 10) * (x[0] - 10) + (x[1] - 20) * (x[1] - 20) + (x[2] - 30) * (x[2] - 30))) < 1e-12);
+    int32_t tri2;
+    double uv2[2], x2[3], d2;
+    const double guess[2] = {0.3, 0.3};
+    EXPECT(ls_snap_guess(surface, far, 2, guess, &tri2, uv2, x2, &d2), LS_OK);
+    CHECK(fabs(d2 - d) < 1e-12);
+    EXPECT(ls_snap_guess(NULL, far, 2, guess, &tri2, uv2, x2, &d2), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap_guess(surface, far, 2, NULL, &tri2, uv2, x2, &d2), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap_guess(surface, far, 8, guess, &tri2, uv2, x2, &d2), LS_ERR_INDEX_OUT_OF_RANGE);
+    const double bad_guess[2] = {0.9, 0.9};
+    EXPECT(ls_snap_guess(surface, far, 2, bad_guess, &tri2, uv2, x2, &d2), LS_ERR_PARAMETER_OUT_OF_RANGE);
+
+    /* Interpolating surfaces pass through the original points. */
+    ls_surface* through = NULL;
+    EXPECT(ls_surface_build_interpolating(NULL, LS_INTERPOLATE_SOLVE, &through), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_build_interpolating(net, LS_INTERPOLATE_SOLVE, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_build_interpolating(net, 0, &through), LS_ERR_INVALID_ARGUMENT);
+    CHECK(through == NULL);
+    for (int mode = LS_INTERPOLATE_SOLVE; mode <= LS_INTERPOLATE_DISPLACEMENT; mode++) {
+        EXPECT(ls_surface_build_interpolating(net, mode, &through), LS_OK);
+        EXPECT(ls_evaluate(through, 0, 0, 0, r), LS_OK); /* corner 0 of triangle 0 is vertex 0 */
+        for (int i = 0; i < 3; i++) CHECK(fabs(r[i] - OCTA_XYZ[i]) < 1e-14);
+        ls_surface_free(through);
+    }
+    ls_surface_free(surface);
+    ls_surface_free(NULL);
+    ls_net_free(net);
+}
+
+static void test_refine(void) {
+    ls_surface* surface = octahedron(NULL);
+    size_t nv = 0, nt = 0;
+    double* xyz = (double*)&SENTINEL;
+    int32_t* tris = NULL;
+    EXPECT(ls_refine(NULL, 1, 0, &nv, &xyz, &nt, &tris), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine(surface, 1, 0, NULL, &xyz, &nt, &tris), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine(surface, 1, 0, &nv, NULL, &nt, &tris), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine(surface, 1, 0, &nv, &xyz, NULL, &tris), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine(surface, 1, 0, &nv, &xyz, &nt, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine(surface, -1, 0, &nv, &xyz, &nt, &tris), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_refine(surface, 13, 0, &nv, &xyz, &nt, &tris), LS_ERR_INVALID_ARGUMENT);
+    CHECK(xyz == (double*)&SENTINEL && nv == 0);
+    EXPECT(ls_refine(surface, 2, 0, &nv, &xyz, &nt, &tris), LS_OK);
+    CHECK(nt == 8 * 16 && nv == 66); /* closed genus 0: V = T/2 + 2 */
+    for (size_t i = 0; i < 3 * nt; i++) CHECK(tris[i] >= 0 && (size_t)tris[i] < nv);
+    CHECK(memcmp(xyz, OCTA_XYZ, 0) == 0);
+    /* Level 0 is the net itself; the limit push moves every vertex inwards. */
+    double* limit = NULL;
+    int32_t* limit_tris = NULL;
+    size_t lnv = 0, lnt = 0;
+    EXPECT(ls_refine(surface, 2, 1, &lnv, &limit, &lnt, &limit_tris), LS_OK);
+    CHECK(lnv == nv && lnt == nt && memcmp(tris, limit_tris, 3 * nt * sizeof(int32_t)) == 0);
+    for (size_t i = 0; i < nv; i++) {
+        double a = sqrt(xyz[3 * i] * xyz[3 * i] + xyz[3 * i + 1] * xyz[3 * i + 1] + xyz[3 * i + 2] * xyz[3 * i + 2]);
+        double b = sqrt(limit[3 * i] * limit[3 * i] + limit[3 * i + 1] * limit[3 * i + 1] +
+                        limit[3 * i + 2] * limit[3 * i + 2]);
+        CHECK(b < a);
+    }
+    /* A limit point is the surface: vertex 0 is corner 0 of triangle 0. */
+    double r[18];
+    EXPECT(ls_evaluate(surface, 0, 0, 0, r), LS_OK);
+    for (int i = 0; i < 3; i++) CHECK(fabs(r[i] - limit[i]) < 1e-15);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(limit);
+    ls_free_array(limit_tris);
+    ls_free_array(NULL);
+    ls_surface_free(surface);
+}
+
+static void test_streams(void) {
+    ls_net* net = NULL;
+    ls_surface* surface = NULL;
+    EXPECT(ls_net_from_arrays(6, OCTA_XYZ, 8, OCTA_TRIS, &net), LS_OK);
+    EXPECT(ls_net_tag_edge(net, 0, 2), LS_OK);
+    EXPECT(ls_net_tag_vertex(net, 4), LS_OK);
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+    uint8_t* bytes = NULL;
+    size_t n = 0;
+    EXPECT(ls_surface_save(NULL, &bytes, &n), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_save(surface, NULL, &n), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_save(surface, &bytes, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_save(surface, &bytes, &n), LS_OK);
+    CHECK(bytes != NULL && n > 48);
+
+    ls_surface* loaded = NULL;
+    EXPECT(ls_surface_load(NULL, n, &loaded), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_load(bytes, n, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_load(bytes, n, &loaded), LS_OK);
+    double a[18], b[18];
+    for (int t = 0; t < 8; t++) {
+        EXPECT(ls_evaluate(surface, t, 0.3, 0.4, a), LS_OK);
+        EXPECT(ls_evaluate(loaded, t, 0.3, 0.4, b), LS_OK);
+        CHECK(memcmp(a, b, sizeof a) == 0);
+    }
+    ls_surface_free(loaded);
+
+    /* Every truncation and every flipped byte is a clean error. */
+    ls_surface* never = (ls_surface*)&SENTINEL;
+    int clean = 1;
+    for (size_t len = 0; len < n; len++) {
+        if (ls_surface_load(bytes, len, &never) != LS_ERR_BAD_STREAM) clean = 0;
+    }
+    CHECK(clean);
+    uint8_t* damaged = malloc(n);
+    for (size_t i = 0; i < n; i++) {
+        memcpy(damaged, bytes, n);
+        damaged[i] ^= 0x20;
+        if (ls_surface_load(damaged, n, &never) != LS_ERR_BAD_STREAM) clean = 0;
+    }
+    CHECK(clean);
+    CHECK(never == (ls_surface*)&SENTINEL);
+    EXPECT(ls_surface_load(damaged, 0, &never), LS_ERR_BAD_STREAM);
+    CHECK(strstr(ls_last_error(), "ls_surface_load") != NULL);
+    free(damaged);
+    ls_free_bytes(bytes, n);
+    ls_free_bytes(NULL, 0);
+    ls_surface_free(surface);
+    ls_net_free(net);
+}
+
+int main(int argc, char** argv) {
+    const char* data_dir = argc > 1 ? argv[1] : ".";
+    CHECK(strcmp(ls_last_error(), "") == 0); /* nothing failed yet on this thread */
+    test_version_and_strings();
+    test_nets(data_dir);
+    test_queries();
+    test_refine();
+    test_streams();
+    if (failures) {
+        fprintf(stderr, "%d checks failed\n", failures);
+        return 1;
+    }
+    printf("C API: all checks passed\n");
+    return 0;
+}

@@ -1,0 +1,281 @@
+! Fortran bindings for loopsurf (module `loopsurf`).
+!
+! Two layers:
+!  * `ls_*` — bind(C) interfaces to the C ABI, one for one (see loopsurf.h).
+!    Handles are type(c_ptr); indices are 0-BASED, exactly as in C.
+!  * `loopsurf_*` — thin convenience wrappers taking Fortran strings and
+!    arrays. Their triangle and vertex indices are 1-BASED (Fortran
+!    convention): triangle 1 is the first triangle of the file, and
+!    `loopsurf_from_arrays` takes tris(3, ntris) with 1-based vertex numbers.
+!    Parameters (v, w) are the same in both layers.
+! Every function returns a status: LS_OK (0) or a negative LS_ERR_* code;
+! `loopsurf_last_error()` then says what failed and why.
+module loopsurf
+    use, intrinsic :: iso_c_binding
+    implicit none
+    private :: c_string, c_strlen, f_string
+
+    integer(c_int), parameter :: LS_OK = 0
+    integer(c_int), parameter :: LS_ERR_NULL_POINTER = -1
+    integer(c_int), parameter :: LS_ERR_IO = -2
+    integer(c_int), parameter :: LS_ERR_PARSE = -3
+    integer(c_int), parameter :: LS_ERR_NON_MANIFOLD = -4
+    integer(c_int), parameter :: LS_ERR_DEGENERATE = -5
+    integer(c_int), parameter :: LS_ERR_INDEX_OUT_OF_RANGE = -6
+    integer(c_int), parameter :: LS_ERR_PARAMETER_OUT_OF_RANGE = -7
+    integer(c_int), parameter :: LS_ERR_NOT_FINITE = -8
+    integer(c_int), parameter :: LS_ERR_UNSUPPORTED = -9
+    integer(c_int), parameter :: LS_ERR_BAD_STREAM = -10
+    integer(c_int), parameter :: LS_ERR_INVALID_ARGUMENT = -11
+    integer(c_int), parameter :: LS_ERR_INTERNAL = -12
+    integer(c_int), parameter :: LS_INTERPOLATE_SOLVE = 1
+    integer(c_int), parameter :: LS_INTERPOLATE_DISPLACEMENT = 2
+
+    interface
+        integer(c_int) function ls_net_load(path, out) bind(C, name="ls_net_load")
+            import :: c_int, c_char, c_ptr
+            character(kind=c_char), intent(in) :: path(*)
+            type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_net_from_arrays(nverts, xyz, ntris, tris, out) &
+                bind(C, name="ls_net_from_arrays")
+            import :: c_int, c_size_t, c_double, c_int32_t, c_ptr
+            integer(c_size_t), value :: nverts, ntris
+            real(c_double), intent(in) :: xyz(*)
+            integer(c_int32_t), intent(in) :: tris(*)
+            type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_net_tag_edge(net, a, b) bind(C, name="ls_net_tag_edge")
+            import :: c_int, c_int32_t, c_ptr
+            type(c_ptr), value :: net
+            integer(c_int32_t), value :: a, b
+        end function
+        integer(c_int) function ls_net_tag_vertex(net, v) bind(C, name="ls_net_tag_vertex")
+            import :: c_int, c_int32_t, c_ptr
+            type(c_ptr), value :: net
+            integer(c_int32_t), value :: v
+        end function
+        integer(c_int) function ls_net_tag_by_angle(net, degrees, ntagged) &
+                bind(C, name="ls_net_tag_by_angle")
+            import :: c_int, c_double, c_size_t, c_ptr
+            type(c_ptr), value :: net
+            real(c_double), value :: degrees
+            integer(c_size_t), intent(out) :: ntagged
+        end function
+        integer(c_int) function ls_net_counts(net, nverts, ntris, nhard) bind(C, name="ls_net_counts")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: net
+            integer(c_size_t), intent(out) :: nverts, ntris, nhard
+        end function
+        subroutine ls_net_free(net) bind(C, name="ls_net_free")
+            import :: c_ptr
+            type(c_ptr), value :: net
+        end subroutine
+        integer(c_int) function ls_surface_build(net, out) bind(C, name="ls_surface_build")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: net
+            type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_surface_build_interpolating(net, mode, out) &
+                bind(C, name="ls_surface_build_interpolating")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: net
+            integer(c_int), value :: mode
+            type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_surface_num_triangles(surface, ntris) &
+                bind(C, name="ls_surface_num_triangles")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), intent(out) :: ntris
+        end function
+        integer(c_int) function ls_evaluate(surface, tri, v, w, result) bind(C, name="ls_evaluate")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: tri
+            real(c_double), value :: v, w
+            real(c_double), intent(out) :: result(18)
+        end function
+        integer(c_int) function ls_evaluate_many(surface, n, tri, vw, results) &
+                bind(C, name="ls_evaluate_many")
+            import :: c_int, c_size_t, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), value :: n
+            integer(c_int32_t), intent(in) :: tri(*)
+            real(c_double), intent(in) :: vw(*)
+            real(c_double), intent(out) :: results(*)
+        end function
+        integer(c_int) function ls_normal(surface, tri, v, w, normal) bind(C, name="ls_normal")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: tri
+            real(c_double), value :: v, w
+            real(c_double), intent(out) :: normal(3)
+        end function
+        integer(c_int) function ls_curvature(surface, tri, v, w, result) bind(C, name="ls_curvature")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: tri
+            real(c_double), value :: v, w
+            real(c_double), intent(out) :: result(8)
+        end function
+        integer(c_int) function ls_snap(surface, xyz, tri, vw, xyz_out, distance) bind(C, name="ls_snap")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), intent(in) :: xyz(3)
+            integer(c_int32_t), intent(out) :: tri
+            real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        end function
+        integer(c_int) function ls_snap_guess(surface, xyz, tri_guess, vw_guess, tri, vw, xyz_out, distance) &
+                bind(C, name="ls_snap_guess")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), intent(in) :: xyz(3), vw_guess(2)
+            integer(c_int32_t), value :: tri_guess
+            integer(c_int32_t), intent(out) :: tri
+            real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        end function
+        integer(c_int) function ls_refine(surface, levels, to_limit, nverts, xyz, ntris, tris) &
+                bind(C, name="ls_refine")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int), value :: levels, to_limit
+            integer(c_size_t), intent(out) :: nverts, ntris
+            type(c_ptr), intent(out) :: xyz, tris
+        end function
+        subroutine ls_free_array(array) bind(C, name="ls_free_array")
+            import :: c_ptr
+            type(c_ptr), value :: array
+        end subroutine
+        integer(c_int) function ls_surface_save(surface, bytes, n) bind(C, name="ls_surface_save")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            type(c_ptr), intent(out) :: bytes
+            integer(c_size_t), intent(out) :: n
+        end function
+        subroutine ls_free_bytes(bytes, n) bind(C, name="ls_free_bytes")
+            import :: c_size_t, c_ptr
+            type(c_ptr), value :: bytes
+            integer(c_size_t), value :: n
+        end subroutine
+        integer(c_int) function ls_surface_load(bytes, n, out) bind(C, name="ls_surface_load")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: bytes
+            integer(c_size_t), value :: n
+            type(c_ptr), intent(out) :: out
+        end function
+        subroutine ls_surface_free(surface) bind(C, name="ls_surface_free")
+            import :: c_ptr
+            type(c_ptr), value :: surface
+        end subroutine
+        type(c_ptr) function ls_last_error() bind(C, name="ls_last_error")
+            import :: c_ptr
+        end function
+        type(c_ptr) function ls_status_string(status) bind(C, name="ls_status_string")
+            import :: c_int, c_ptr
+            integer(c_int), value :: status
+        end function
+        subroutine ls_version(major, minor, patch) bind(C, name="ls_version")
+            import :: c_int
+            integer(c_int), intent(out) :: major, minor, patch
+        end subroutine
+        function c_strlen(s) bind(C, name="strlen") result(n)
+            import :: c_ptr, c_size_t
+            type(c_ptr), value :: s
+            integer(c_size_t) :: n
+        end function
+    end interface
+
+contains
+
+    !> Reads a mesh file (.off .obj .ply .stl .tri) into a new net.
+    integer function loopsurf_load(path, net) result(status)
+        character(len=*), intent(in) :: path
+        type(c_ptr), intent(out) :: net
+        status = ls_net_load(c_string(path), net)
+    end function
+
+    !> A net from points xyz(3, nverts) and triangles tris(3, ntris) with
+    !> 1-BASED vertex numbers.
+    integer function loopsurf_from_arrays(xyz, tris, net) result(status)
+        real(c_double), intent(in) :: xyz(:, :)
+        integer, intent(in) :: tris(:, :)
+        type(c_ptr), intent(out) :: net
+        integer(c_int32_t), allocatable :: zero_based(:, :)
+        zero_based = int(tris - 1, c_int32_t)
+        status = ls_net_from_arrays(size(xyz, 2, kind=c_size_t), xyz, &
+            size(tris, 2, kind=c_size_t), zero_based, net)
+    end function
+
+    !> Tags the edge between 1-BASED vertices a and b hard.
+    integer function loopsurf_tag_edge(net, a, b) result(status)
+        type(c_ptr), intent(in) :: net
+        integer, intent(in) :: a, b
+        status = ls_net_tag_edge(net, int(a - 1, c_int32_t), int(b - 1, c_int32_t))
+    end function
+
+    !> X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of 1-BASED triangle tri.
+    integer function loopsurf_evaluate(surface, tri, v, w, result) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: tri
+        real(c_double), intent(in) :: v, w
+        real(c_double), intent(out) :: result(18)
+        status = ls_evaluate(surface, int(tri - 1, c_int32_t), v, w, result)
+    end function
+
+    !> k1, dir1, k2, dir2 at (v, w) of 1-BASED triangle tri.
+    integer function loopsurf_curvature(surface, tri, v, w, result) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: tri
+        real(c_double), intent(in) :: v, w
+        real(c_double), intent(out) :: result(8)
+        status = ls_curvature(surface, int(tri - 1, c_int32_t), v, w, result)
+    end function
+
+    !> The closest surface point to xyz; tri comes back 1-BASED.
+    integer function loopsurf_snap(surface, xyz, tri, vw, xyz_out, distance) result(status)
+        type(c_ptr), intent(in) :: surface
+        real(c_double), intent(in) :: xyz(3)
+        integer, intent(out) :: tri
+        real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        integer(c_int32_t) :: t
+        status = ls_snap(surface, xyz, t, vw, xyz_out, distance)
+        if (status == LS_OK) tri = int(t) + 1
+    end function
+
+    !> The last error on this thread, as a Fortran string.
+    function loopsurf_last_error() result(message)
+        character(len=:), allocatable :: message
+        message = f_string(ls_last_error())
+    end function
+
+    !> The name and meaning of a status code.
+    function loopsurf_status_string(status) result(message)
+        integer, intent(in) :: status
+        character(len=:), allocatable :: message
+        message = f_string(ls_status_string(int(status, c_int)))
+    end function
+
+    function f_string(p) result(s)
+        type(c_ptr), intent(in) :: p
+        character(len=:), allocatable :: s
+        character(kind=c_char), pointer :: chars(:)
+        integer :: i, n
+        n = int(c_strlen(p))
+        call c_f_pointer(p, chars, [n])
+        allocate(character(len=n) :: s)
+        do i = 1, n
+            s(i:i) = chars(i)
+        end do
+    end function
+
+    function c_string(s) result(c)
+        character(len=*), intent(in) :: s
+        character(kind=c_char) :: c(len_trim(s) + 1)
+        integer :: i
+        do i = 1, len_trim(s)
+            c(i) = s(i:i)
+        end do
+        c(len_trim(s) + 1) = c_null_char
+    end function
+end module loopsurf
