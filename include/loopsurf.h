@@ -95,7 +95,20 @@ int ls_refine(const ls_surface *surface,
               size_t *ntris,
               int32_t **tris);
 
-// Frees an array returned by `ls_refine` (NULL is ignored).
+// Where every vertex of `ls_refine`'s output (same `levels`, same order)
+// lies on the surface: its control triangle (`tri`, nverts entries) and
+// exact dyadic (v, w) there (`vw`, 2 × nverts), so that
+// `ls_evaluate(tri[i], vw[2i], vw[2i+1])` is the limit of refined vertex i —
+// what a finite-element code needs to curve a refined mesh. Release both
+// arrays with `ls_free_array`.
+int ls_refine_origins(const ls_surface *surface,
+                      int levels,
+                      size_t *nverts,
+                      int32_t **tri,
+                      double **vw);
+
+// Frees an array returned by `ls_refine`, `ls_refine_origins` or
+// `ls_net_hard_edges` (NULL is ignored).
 void ls_free_array(void *array);
 
 // The surface as a versioned, checksummed byte stream, e.g. for
@@ -141,6 +154,10 @@ int ls_net_tag_by_angle(ls_net *net, double degrees, size_t *ntagged);
 // Writes the numbers of vertices, triangles and hard edges (boundary
 // edges included); each output may be NULL.
 int ls_net_counts(const ls_net *net, size_t *nverts, size_t *ntris, size_t *nhard_edges);
+
+// The hard edges (boundary edges included) as `n` pairs of 0-based vertex
+// indices i < j in a new array of 2 × n, released with `ls_free_array`.
+int ls_net_hard_edges(const ls_net *net, size_t *n, int32_t **pairs);
 
 // Frees a net (NULL is ignored). Surfaces built from it stay valid.
 void ls_net_free(ls_net *net);

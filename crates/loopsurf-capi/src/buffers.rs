@@ -10,7 +10,7 @@ use loopsurf::Surface;
 use std::ffi::{c_int, c_void};
 
 /// Copies `data` into a fresh `malloc` block (never NULL on success).
-unsafe fn malloc_copy<T: Copy>(data: &[T]) -> Result<*mut T, Fail> {
+pub(crate) unsafe fn malloc_copy<T: Copy>(data: &[T]) -> Result<*mut T, Fail> {
     let bytes = std::mem::size_of_val(data).max(1);
     let p = libc::malloc(bytes) as *mut T;
     if p.is_null() {
@@ -90,7 +90,59 @@ pub unsafe extern "C" fn ls_refine(
     })
 }
 
-/// Frees an array returned by `ls_refine` (NULL is ignored).
+/// Where every vertex of `ls_refine`'s output (same `levels`, same order)
+/// lies on the surface: its control triangle (`tri`, nverts entries) and
+/// exact dyadic (v, w) there (`vw`, 2 × nverts), so that
+/// `ls_evaluate(tri[i], vw[2i], vw[2i+1])` is the limit of refined vertex i —
+/// what a finite-element code needs to curve a refined mesh. Release both
+/// arrays with `ls_free_array`.
+#[no_mangle]
+pub unsafe extern "C" fn ls_refine_origins(
+    surface: *const ls_surface,
+    levels: c_int,
+    nverts: *mut usize,
+    tri: *mut *mut i32,
+    vw: *mut *mut f64,
+) -> c_int {
+    run("ls_refine_origins", || {
+        let surface = &input(surface, "surface")?.0;
+        let outs = (
+            output(nverts, "nverts")?,
+            output(tri, "tri")?,
+            output(vw, "vw")?,
+        );
+        let levels = u32::try_from(levels).map_err(|_| {
+            Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("levels = {levels}: must be ≥ 0"),
+            )
+        })?;
+        let refined = surface.net().refine_uniform(levels)?;
+        let mut tris = Vec::with_capacity(refined.net().points().len());
+        let mut params = Vec::with_capacity(2 * tris.capacity());
+        for origin in refined.origins() {
+            // Unreferenced control vertices lie on no triangle.
+            let (t, v, w) = origin.map_or((-1, f64::NAN, f64::NAN), |o| (o.tri as i32, o.v, o.w));
+            tris.push(t);
+            params.extend([v, w]);
+        }
+        let tri_out = malloc_copy(&tris)?;
+        let vw_out = match malloc_copy(&params) {
+            Ok(p) => p,
+            Err(fail) => {
+                libc::free(tri_out as *mut c_void);
+                return Err(fail);
+            }
+        };
+        *outs.0 = tris.len();
+        *outs.1 = tri_out;
+        *outs.2 = vw_out;
+        Ok(())
+    })
+}
+
+/// Frees an array returned by `ls_refine`, `ls_refine_origins` or
+/// `ls_net_hard_edges` (NULL is ignored).
 #[no_mangle]
 pub unsafe extern "C" fn ls_free_array(array: *mut c_void) {
     libc::free(array);

@@ -154,6 +154,29 @@ pub unsafe extern "C" fn ls_net_counts(
     })
 }
 
+/// The hard edges (boundary edges included) as `n` pairs of 0-based vertex
+/// indices i < j in a new array of 2 × n, released with `ls_free_array`.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_hard_edges(
+    net: *const ls_net,
+    n: *mut usize,
+    pairs: *mut *mut i32,
+) -> c_int {
+    run("ls_net_hard_edges", || {
+        let net = &input(net, "net")?.0;
+        let (n, pairs) = (output(n, "n")?, output(pairs, "pairs")?);
+        let flat: Vec<i32> = net
+            .hard_edges()
+            .iter()
+            .flatten()
+            .map(|&i| i as i32)
+            .collect();
+        *pairs = crate::buffers::malloc_copy(&flat)?;
+        *n = flat.len() / 2;
+        Ok(())
+    })
+}
+
 /// Frees a net (NULL is ignored). Surfaces built from it stay valid.
 #[no_mangle]
 pub unsafe extern "C" fn ls_net_free(net: *mut ls_net) {
