@@ -67,6 +67,12 @@ module loopsurf
             type(c_ptr), value :: net
             integer(c_size_t), intent(out) :: nverts, ntris, nhard
         end function
+        integer(c_int) function ls_net_hard_edges(net, n, pairs) bind(C, name="ls_net_hard_edges")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: net
+            integer(c_size_t), intent(out) :: n
+            type(c_ptr), intent(out) :: pairs
+        end function
         subroutine ls_net_free(net) bind(C, name="ls_net_free")
             import :: c_ptr
             type(c_ptr), value :: net
@@ -142,6 +148,14 @@ module loopsurf
             integer(c_int), value :: levels, to_limit
             integer(c_size_t), intent(out) :: nverts, ntris
             type(c_ptr), intent(out) :: xyz, tris
+        end function
+        integer(c_int) function ls_refine_origins(surface, levels, nverts, tri, vw) &
+                bind(C, name="ls_refine_origins")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int), value :: levels
+            integer(c_size_t), intent(out) :: nverts
+            type(c_ptr), intent(out) :: tri, vw
         end function
         subroutine ls_free_array(array) bind(C, name="ls_free_array")
             import :: c_ptr

@@ -73,6 +73,11 @@ program test_loopsurf
     call check(nt == 128 .and. nv == 66, "refined counts")
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
+    call check(ls_refine_origins(surf, 2_c_int, n, rxyz, rtris) == LS_OK .and. n == 66, "refine origins")
+    call ls_free_array(rxyz)
+    call ls_free_array(rtris)
+    call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
+    call ls_free_array(rxyz)
 
     ! A surface point snaps to itself; the triangle comes back 1-based.
     call check(loopsurf_evaluate(surf, 4, 0.2d0, 0.3d0, r) == LS_OK, "eval for snap")

@@ -144,6 +144,15 @@ static void test_nets(const char* data_dir) {
     EXPECT(ls_net_tag_by_angle(net, 60, NULL), LS_OK);
     EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
     CHECK(nh == 12);
+    size_t npairs = 0;
+    int32_t* pairs = NULL;
+    EXPECT(ls_net_hard_edges(NULL, &npairs, &pairs), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_hard_edges(net, NULL, &pairs), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_hard_edges(net, &npairs, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_hard_edges(net, &npairs, &pairs), LS_OK);
+    CHECK(npairs == 12);
+    for (size_t i = 0; i < npairs; i++) CHECK(pairs[2 * i] < pairs[2 * i + 1] && pairs[2 * i + 1] < 6);
+    ls_free_array(pairs);
     ls_net_free(net);
     ls_net_free(NULL);
 
@@ -306,6 +315,23 @@ static void test_refine(void) {
     double r[18];
     EXPECT(ls_evaluate(surface, 0, 0, 0, r), LS_OK);
     for (int i = 0; i < 3; i++) CHECK(fabs(r[i] - limit[i]) < 1e-15);
+    /* Origins: refined vertex i is the surface at (tri[i], vw[i]). */
+    size_t no = 0;
+    int32_t* otri = NULL;
+    double* ovw = NULL;
+    EXPECT(ls_refine_origins(NULL, 2, &no, &otri, &ovw), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine_origins(surface, 2, NULL, &otri, &ovw), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine_origins(surface, 2, &no, NULL, &ovw), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine_origins(surface, 2, &no, &otri, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_refine_origins(surface, -2, &no, &otri, &ovw), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_refine_origins(surface, 2, &no, &otri, &ovw), LS_OK);
+    CHECK(no == nv);
+    for (size_t i = 0; i < no; i++) {
+        EXPECT(ls_evaluate(surface, otri[i], ovw[2 * i], ovw[2 * i + 1], r), LS_OK);
+        for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - limit[3 * i + k]) < 1e-14);
+    }
+    ls_free_array(otri);
+    ls_free_array(ovw);
     ls_free_array(xyz);
     ls_free_array(tris);
     ls_free_array(limit);
