@@ -148,20 +148,28 @@ pub unsafe extern "C" fn ls_evaluate_many(
             .ok_or_else(too_large)?;
         let tri = std::slice::from_raw_parts(tri, n);
         let vw = std::slice::from_raw_parts(vw, 2 * n);
-        // Evaluate into a buffer so that nothing is written unless all succeed.
-        let mut buffer = vec![0.0; len];
-        buffer
+        let check = |i: usize| {
+            let (v, w) = (vw[2 * i], vw[2 * i + 1]);
+            let t = query(surface, tri[i], v, w)?;
+            surface.validate(t, v, w)?;
+            Ok::<usize, Fail>(t)
+        };
+        // Validate every query first, so that nothing is written unless
+        // all succeed; the first bad one is reported with its position.
+        if let Some(bad) = (0..n).into_par_iter().find_first(|&i| check(i).is_err()) {
+            if let Err(fail) = check(bad) {
+                return Err(fail.context(&format!("query {bad}")));
+            }
+        }
+        let results = std::slice::from_raw_parts_mut(results, len);
+        results
             .par_chunks_mut(18)
             .enumerate()
             .try_for_each(|(i, out)| {
-                let (v, w) = (vw[2 * i], vw[2 * i + 1]);
-                let at = |f: Fail| f.context(&format!("query {i}"));
-                let t = query(surface, tri[i], v, w).map_err(at)?;
-                let record = surface.eval(t, v, w).map_err(|e| at(e.into()))?.record();
+                let record = surface.eval(check(i)?, vw[2 * i], vw[2 * i + 1])?.record();
                 out.copy_from_slice(&record);
                 Ok::<(), Fail>(())
             })?;
-        std::ptr::copy_nonoverlapping(buffer.as_ptr(), results, len);
         Ok(())
     })
 }

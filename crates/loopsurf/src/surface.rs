@@ -272,6 +272,13 @@ impl Surface {
         Ok(curvature_of(&e))
     }
 
+    /// Checks a query without evaluating it: `eval(tri, v, w)` succeeds
+    /// exactly when this does (batch callers validate everything first so
+    /// that they write no output on failure).
+    pub fn validate(&self, tri: usize, v: f64, w: f64) -> Result<()> {
+        self.check(tri, v, w).map(|_| ())
+    }
+
     /// Validates a query; clamps round-off excursions into the triangle.
     fn check(&self, tri: usize, v: f64, w: f64) -> Result<(f64, f64)> {
         let bad = |reason| Err(Error::BadParameter { tri, v, w, reason });

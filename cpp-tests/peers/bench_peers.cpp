@@ -1,0 +1,174 @@
+// Peer benchmark (built by CMake, not run by ctest): loopsurf against
+// OpenSubdiv Bfr evaluation and against OpenMesh LoopT and OpenSubdiv Far
+// uniform refinement, on the same meshes and points, in one run. Medians of
+// several repetitions; single thread unless noted (run with
+// RAYON_NUM_THREADS=1 for a single-thread loopsurf refinement).
+// Usage: bench_peers DATA_DIR
+#include "osd.hpp"
+
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+
+#include <chrono>
+#include <functional>
+#include <random>
+
+struct Traits : OpenMesh::DefaultTraits {
+    typedef OpenMesh::Vec3d Point;
+};
+typedef OpenMesh::TriMesh_ArrayKernelT<Traits> Mesh;
+typedef OpenSubdiv::Bfr::Surface<double> BfrSurface;
+
+static double median_seconds(int reps, const std::function<void()>& f) {
+    std::vector<double> t;
+    for (int i = 0; i < reps; i++) {
+        auto a = std::chrono::steady_clock::now();
+        f();
+        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+static volatile double sink;
+
+static void evaluation(const std::string& name, const std::string& path) {
+    Net n = load_net(path, -1);
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> u(0, 1);
+    auto random_vw = [&](double* vw) {
+        double v = u(rng), w = u(rng);
+        if (v + w > 1) v = 1 - v, w = 1 - w;
+        vw[0] = v, vw[1] = w;
+    };
+    // (i) one point per triangle, triangles in random order.
+    std::vector<int32_t> order(n.ntris());
+    for (size_t t = 0; t < n.ntris(); t++) order[t] = int32_t(t);
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<double> vw1(2 * n.ntris());
+    for (size_t i = 0; i < n.ntris(); i++) random_vw(&vw1[2 * i]);
+    // (ii) 16 random points per triangle, triangles in order.
+    std::vector<double> vw16(32 * n.ntris());
+    for (size_t i = 0; i < 16 * n.ntris(); i++) random_vw(&vw16[2 * i]);
+
+    double build_ours = median_seconds(3, [&] {
+        ls_net* net;
+        ls_surface* s;
+        ls_net_from_arrays(n.nverts(), n.xyz.data(), n.ntris(), n.tris.data(), &net);
+        ls_surface_build(net, &s);
+        ls_surface_free(s);
+        ls_net_free(net);
+    });
+    osd::TopologyRefiner* base = nullptr;
+    double build_bfr = median_seconds(3, [&] {
+        delete base;
+        base = osd_refiner(n);
+        OpenSubdiv::Bfr::RefinerSurfaceFactory<> f(*base);
+    });
+    OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*base);
+    BfrSurface::PointDescriptor desc(3);
+    std::vector<double> patch;
+    BfrSurface surface;
+    double r[18], d[6][3];
+
+    double ours_i = median_seconds(7, [&] {
+        double acc = 0;
+        for (size_t i = 0; i < n.ntris(); i++) {
+            ls_evaluate(n.surface, order[i], vw1[2 * i], vw1[2 * i + 1], r);
+            acc += r[0];
+        }
+        sink = acc;
+    });
+    double bfr_i = median_seconds(7, [&] {
+        double acc = 0;
+        for (size_t i = 0; i < n.ntris(); i++) {
+            factory.InitVertexSurface<double>(order[i], &surface);
+            patch.resize(3 * size_t(surface.GetNumPatchPoints()));
+            surface.PreparePatchPoints(n.xyz.data(), desc, patch.data(), desc);
+            surface.Evaluate(&vw1[2 * i], patch.data(), desc, d[0], d[1], d[2], d[3], d[4], d[5]);
+            acc += d[0][0];
+        }
+        sink = acc;
+    });
+    double ours_ii = median_seconds(7, [&] {
+        double acc = 0;
+        for (size_t t = 0; t < n.ntris(); t++)
+            for (size_t i = 16 * t; i < 16 * t + 16; i++) {
+                ls_evaluate(n.surface, int32_t(t), vw16[2 * i], vw16[2 * i + 1], r);
+                acc += r[0];
+            }
+        sink = acc;
+    });
+    double bfr_ii = median_seconds(7, [&] {
+        double acc = 0;
+        for (size_t t = 0; t < n.ntris(); t++) {
+            factory.InitVertexSurface<double>(int(t), &surface);
+            patch.resize(3 * size_t(surface.GetNumPatchPoints()));
+            surface.PreparePatchPoints(n.xyz.data(), desc, patch.data(), desc);
+            for (size_t i = 16 * t; i < 16 * t + 16; i++) {
+                surface.Evaluate(&vw16[2 * i], patch.data(), desc, d[0], d[1], d[2], d[3], d[4], d[5]);
+                acc += d[0][0];
+            }
+        }
+        sink = acc;
+    });
+    // ls_evaluate_many on all threads, (ii) order.
+    std::vector<int32_t> tri_many(16 * n.ntris());
+    std::vector<double> out(18 * 16 * n.ntris());
+    for (size_t i = 0; i < tri_many.size(); i++) tri_many[i] = int32_t(i / 16);
+    double ours_many = median_seconds(7, [&] {
+        ls_evaluate_many(n.surface, tri_many.size(), tri_many.data(), vw16.data(), out.data());
+    });
+    double m1 = n.ntris() / 1e6, m16 = 16 * n.ntris() / 1e6;
+    std::printf("| %s (%zu triangles) | build: loopsurf %.3f s, Bfr factory %.3f s | (i) 1 pt/tri random: %.2f vs %.2f M/s (%.1f×) | (ii) 16 pts/tri: %.2f vs %.2f M/s (%.1f×); all threads %.2f M/s |\n",
+                name.c_str(), n.ntris(), build_ours, build_bfr, m1 / ours_i, m1 / bfr_i, bfr_i / ours_i, m16 / ours_ii,
+                m16 / bfr_ii, bfr_ii / ours_ii, m16 / ours_many);
+    delete base;
+    ls_surface_free(n.surface);
+}
+
+static void refinement(const std::string& path, int levels) {
+    Net n = load_net(path, -1);
+    double ours = median_seconds(7, [&] {
+        size_t nv, nt;
+        double* xyz;
+        int32_t* tris;
+        ls_refine(n.surface, levels, 0, &nv, &xyz, &nt, &tris);
+        ls_free_array(xyz);
+        ls_free_array(tris);
+    });
+    double openmesh = median_seconds(3, [&] {
+        Mesh m;
+        std::vector<Mesh::VertexHandle> vh;
+        for (size_t i = 0; i < n.nverts(); i++) vh.push_back(m.add_vertex(Mesh::Point(n.xyz[3 * i], n.xyz[3 * i + 1], n.xyz[3 * i + 2])));
+        for (size_t t = 0; t < n.ntris(); t++) m.add_face(vh[n.tris[3 * t]], vh[n.tris[3 * t + 1]], vh[n.tris[3 * t + 2]]);
+        OpenMesh::Subdivider::Uniform::LoopT<Mesh, double> loop;
+        loop.attach(m);
+        loop(levels);
+        loop.detach();
+    });
+    double far = median_seconds(7, [&] {
+        std::vector<double> xyz;
+        std::vector<int> tris;
+        osd_refine(n, levels, xyz, tris);
+    });
+    double mt = double(n.ntris() << (2 * levels)) / 1e6;
+    const char* threads = std::getenv("RAYON_NUM_THREADS");
+    std::printf("| refine %s ×%d (%.2fM triangles out) | loopsurf %.3f s (%.1f M tri/s, %s threads) | OpenMesh LoopT %.3f s (%.1f M tri/s, %.1f× slower) | OpenSubdiv Far %.3f s (%.1f M tri/s, %.1f× slower) |\n",
+                path.substr(path.rfind('/') + 1).c_str(), levels, mt, ours, mt / ours, threads ? threads : "all", openmesh,
+                mt / openmesh, openmesh / ours, far, mt / far, far / ours);
+    ls_surface_free(n.surface);
+}
+
+int main(int argc, char** argv) {
+    std::string dir = argc > 1 ? argv[1] : ".";
+    int major, minor, patch;
+    ls_version(&major, &minor, &patch);
+    std::printf("loopsurf %d.%d.%d vs OpenSubdiv 3.5 (Bfr defaults, Far) and OpenMesh LoopT, medians\n", major, minor, patch);
+    evaluation("pig", dir + "/pig.off");
+    evaluation("bunny00", dir + "/bunny00.off");
+    refinement(dir + "/bunny00.off", 3);
+    return 0;
+}
