@@ -136,12 +136,7 @@ pub unsafe extern "C" fn ls_evaluate_many(
         input(tri, "tri")?;
         input(vw, "vw")?;
         let results = output(results, "results")?;
-        let too_large = || {
-            Fail::new(
-                crate::status::LS_ERR_INVALID_ARGUMENT,
-                format!("n = {n} is too large"),
-            )
-        };
+        let too_large = || Fail::new(LS_ERR_INVALID_ARGUMENT, format!("n = {n} is too large"));
         let len = n
             .checked_mul(18)
             .filter(|l| *l <= isize::MAX as usize / 8)
