@@ -24,6 +24,18 @@ struct Net {
     size_t ntris() const { return tris.size() / 3; }
 };
 
+// Failed comparisons are counted and reported; the test fails at the end.
+inline int failures = 0;
+#define CHECK(c, ...)                                \
+    do {                                             \
+        if (!(c)) {                                  \
+            std::fprintf(stderr, "FAILED %s: ", #c); \
+            std::fprintf(stderr, __VA_ARGS__);       \
+            std::fprintf(stderr, "\n");              \
+            failures++;                              \
+        }                                            \
+    } while (0)
+
 inline void fail(const char* what) {
     std::fprintf(stderr, "%s: %s\n", what, ls_last_error());
     std::exit(1);

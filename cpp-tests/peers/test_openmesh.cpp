@@ -14,16 +14,6 @@ struct Traits : OpenMesh::DefaultTraits {
 };
 typedef OpenMesh::TriMesh_ArrayKernelT<Traits> Mesh;
 
-static int failures = 0;
-#define CHECK(c, ...)                                       \
-    do {                                                    \
-        if (!(c)) {                                         \
-            std::fprintf(stderr, "FAILED %s: ", #c);        \
-            std::fprintf(stderr, __VA_ARGS__);              \
-            std::fprintf(stderr, "\n");                     \
-            failures++;                                     \
-        }                                                   \
-    } while (0)
 
 static Mesh openmesh_of(const Net& n) {
     Mesh m;

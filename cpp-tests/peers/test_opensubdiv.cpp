@@ -10,16 +10,6 @@
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 
-static int failures = 0;
-#define CHECK(c, ...)                                \
-    do {                                             \
-        if (!(c)) {                                  \
-            std::fprintf(stderr, "FAILED %s: ", #c); \
-            std::fprintf(stderr, __VA_ARGS__);       \
-            std::fprintf(stderr, "\n");              \
-            failures++;                              \
-        }                                            \
-    } while (0)
 
 static void compare(const std::string& path, double angle, int levels) {
     Net n = load_net(path, angle);

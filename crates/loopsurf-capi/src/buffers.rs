@@ -23,6 +23,28 @@ pub(crate) unsafe fn malloc_copy<T: Copy>(data: &[T]) -> Result<*mut T, Fail> {
     Ok(p)
 }
 
+/// A level count from C: 0 or more (the library caps it).
+fn levels_arg(levels: c_int) -> Result<u32, Fail> {
+    u32::try_from(levels).map_err(|_| {
+        Fail::new(
+            LS_ERR_INVALID_ARGUMENT,
+            format!("levels = {levels}: must be ≥ 0"),
+        )
+    })
+}
+
+/// Copies two arrays into fresh `malloc` blocks, both or neither.
+unsafe fn malloc_pair<A: Copy, B: Copy>(a: &[A], b: &[B]) -> Result<(*mut A, *mut B), Fail> {
+    let pa = malloc_copy(a)?;
+    match malloc_copy(b) {
+        Ok(pb) => Ok((pa, pb)),
+        Err(fail) => {
+            libc::free(pa as *mut c_void);
+            Err(fail)
+        }
+    }
+}
+
 /// Refines the surface's control net `levels` times (0 to 12) by uniform
 /// Loop subdivision with its hard edges and corners. With `to_limit`
 /// nonzero, every vertex is moved to its exact limit position. Writes the
@@ -48,12 +70,7 @@ pub unsafe extern "C" fn ls_refine(
             output(ntris, "ntris")?,
             output(tris, "tris")?,
         );
-        let levels = u32::try_from(levels).map_err(|_| {
-            Fail::new(
-                LS_ERR_INVALID_ARGUMENT,
-                format!("levels = {levels}: must be ≥ 0"),
-            )
-        })?;
+        let levels = levels_arg(levels)?;
         let refined = surface.net().refine_uniform(levels)?;
         let net = refined.net();
         if net.points().len() > i32::MAX as usize {
@@ -74,14 +91,7 @@ pub unsafe extern "C" fn ls_refine(
             .flatten()
             .map(|&i| i as i32)
             .collect();
-        let coords_out = malloc_copy(&coords)?;
-        let tris_out = match malloc_copy(&indices) {
-            Ok(p) => p,
-            Err(fail) => {
-                libc::free(coords_out as *mut c_void);
-                return Err(fail);
-            }
-        };
+        let (coords_out, tris_out) = malloc_pair(&coords, &indices)?;
         *outs.0 = points.len();
         *outs.1 = coords_out;
         *outs.2 = net.triangles().len();
@@ -111,12 +121,7 @@ pub unsafe extern "C" fn ls_refine_origins(
             output(tri, "tri")?,
             output(vw, "vw")?,
         );
-        let levels = u32::try_from(levels).map_err(|_| {
-            Fail::new(
-                LS_ERR_INVALID_ARGUMENT,
-                format!("levels = {levels}: must be ≥ 0"),
-            )
-        })?;
+        let levels = levels_arg(levels)?;
         let refined = surface.net().refine_uniform(levels)?;
         let mut tris = Vec::with_capacity(refined.net().points().len());
         let mut params = Vec::with_capacity(2 * tris.capacity());
@@ -126,14 +131,7 @@ pub unsafe extern "C" fn ls_refine_origins(
             tris.push(t);
             params.extend([v, w]);
         }
-        let tri_out = malloc_copy(&tris)?;
-        let vw_out = match malloc_copy(&params) {
-            Ok(p) => p,
-            Err(fail) => {
-                libc::free(tri_out as *mut c_void);
-                return Err(fail);
-            }
-        };
+        let (tri_out, vw_out) = malloc_pair(&tris, &params)?;
         *outs.0 = tris.len();
         *outs.1 = tri_out;
         *outs.2 = vw_out;

@@ -93,6 +93,27 @@ fn query(surface: &Surface, tri: i32, v: f64, w: f64) -> Result<usize, Fail> {
     Ok(t)
 }
 
+/// The body of a query at one point that writes N numbers: checks the
+/// pointers and the query, computes, then writes.
+unsafe fn point_query<const N: usize>(
+    name: &str,
+    surface: *const ls_surface,
+    tri: i32,
+    v: f64,
+    w: f64,
+    (out, out_name): (*mut f64, &str),
+    compute: impl FnOnce(&Surface, usize) -> Result<[f64; N], Fail>,
+) -> c_int {
+    run(name, || {
+        let surface = &input(surface, "surface")?.0;
+        let out = output(out, out_name)?;
+        let t = query(surface, tri, v, w)?;
+        let values = compute(surface, t)?;
+        std::ptr::copy_nonoverlapping(values.as_ptr(), out, N);
+        Ok(())
+    })
+}
+
 /// Exact position and derivatives at (v, w) of triangle `tri` (barycentric
 /// weights 1 − v − w, v, w on its corners): 18 doubles X, Xv, Xw, Xvv, Xvw,
 /// Xww. Exactly at an irregular, crease, dart or corner vertex the
@@ -106,14 +127,15 @@ pub unsafe extern "C" fn ls_evaluate(
     w: f64,
     result: *mut f64,
 ) -> c_int {
-    run("ls_evaluate", || {
-        let surface = &input(surface, "surface")?.0;
-        let result = output(result, "result")?;
-        let t = query(surface, tri, v, w)?;
-        let record = surface.eval(t, v, w)?.record();
-        std::ptr::copy_nonoverlapping(record.as_ptr(), result, record.len());
-        Ok(())
-    })
+    point_query(
+        "ls_evaluate",
+        surface,
+        tri,
+        v,
+        w,
+        (result, "result"),
+        |s, t| Ok(s.eval(t, v, w)?.record()),
+    )
 }
 
 /// `ls_evaluate` for n points at once, in parallel: triangle `tri[i]` at
@@ -180,14 +202,15 @@ pub unsafe extern "C" fn ls_normal(
     w: f64,
     normal: *mut f64,
 ) -> c_int {
-    run("ls_normal", || {
-        let surface = &input(surface, "surface")?.0;
-        let normal = output(normal, "normal")?;
-        let t = query(surface, tri, v, w)?;
-        let n = surface.normal(t, v, w)?.to_array();
-        std::ptr::copy_nonoverlapping(n.as_ptr(), normal, 3);
-        Ok(())
-    })
+    point_query(
+        "ls_normal",
+        surface,
+        tri,
+        v,
+        w,
+        (normal, "normal"),
+        |s, t| Ok(s.normal(t, v, w)?.to_array()),
+    )
 }
 
 /// Principal curvatures and directions at (v, w) of triangle `tri`: 8
@@ -203,14 +226,15 @@ pub unsafe extern "C" fn ls_curvature(
     w: f64,
     result: *mut f64,
 ) -> c_int {
-    run("ls_curvature", || {
-        let surface = &input(surface, "surface")?.0;
-        let result = output(result, "result")?;
-        let t = query(surface, tri, v, w)?;
-        let record = surface.curvature(t, v, w)?.record();
-        std::ptr::copy_nonoverlapping(record.as_ptr(), result, record.len());
-        Ok(())
-    })
+    point_query(
+        "ls_curvature",
+        surface,
+        tri,
+        v,
+        w,
+        (result, "result"),
+        |s, t| Ok(s.curvature(t, v, w)?.record()),
+    )
 }
 
 /// The closest point of the limit surface to `xyz` (the global minimum of
