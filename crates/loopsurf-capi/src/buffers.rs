@@ -23,6 +23,8 @@ pub(crate) unsafe fn malloc_copy<T: Copy>(data: &[T]) -> Result<*mut T, Fail> {
     Ok(p)
 }
 
+const _: () = assert!(std::mem::size_of::<loopsurf::DVec3>() == 3 * std::mem::size_of::<f64>());
+
 /// A level count from C: 0 or more (the library caps it).
 fn levels_arg(levels: c_int) -> Result<u32, Fail> {
     u32::try_from(levels).map_err(|_| {
@@ -79,19 +81,20 @@ pub unsafe extern "C" fn ls_refine(
                 format!("{} vertices do not fit 32-bit indices", net.points().len()),
             ));
         }
+        let limits;
         let points = if to_limit != 0 {
-            refined.limit_points()
+            limits = refined.limit_points();
+            &limits[..]
         } else {
-            net.points().to_vec()
+            net.points()
         };
-        let coords: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
-        let indices: Vec<i32> = net
-            .triangles()
-            .iter()
-            .flatten()
-            .map(|&i| i as i32)
-            .collect();
-        let (coords_out, tris_out) = malloc_pair(&coords, &indices)?;
+        // Copied straight into the caller's arrays: a DVec3 is three f64
+        // (repr(C)), and indices below i32::MAX read the same as i32.
+        let coords = std::slice::from_raw_parts(points.as_ptr() as *const f64, 3 * points.len());
+        let triangles = net.triangles();
+        let indices =
+            std::slice::from_raw_parts(triangles.as_ptr() as *const i32, 3 * triangles.len());
+        let (coords_out, tris_out) = malloc_pair(coords, indices)?;
         *outs.0 = points.len();
         *outs.1 = coords_out;
         *outs.2 = net.triangles().len();
