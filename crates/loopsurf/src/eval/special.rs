@@ -58,7 +58,7 @@ pub struct SpecialPatch {
 
 /// A special corner's configuration, in canonical local numbering.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
-struct Key {
+pub struct Key {
     /// Local labels of p and q: around a boundary vertex the numbering
     /// starts at the boundary whatever p is, so the local nets of its
     /// corners coincide while their matrices differ.
@@ -72,31 +72,46 @@ struct Key {
 #[derive(Default)]
 pub struct Cache {
     patches: HashMap<Key, std::sync::Arc<SpecialPatch>>,
-    /// Scratch labels of [`Key::around`], one per net vertex.
-    labels: Vec<u32>,
+}
+
+/// The configuration of triangle (c, p, q) (counter-clockwise) of a net and
+/// the net vertices of its neighbourhood in the patch's order. Pure, so it
+/// runs in parallel; `labels` is scratch, one `NONE` entry per net vertex.
+pub fn configuration(
+    topo: &Topology,
+    features: &Features,
+    [c, p, q]: [u32; 3],
+    labels: &mut [u32],
+) -> (Key, Vec<u32>) {
+    // The local net reproduces the rings of c, p and q, so the
+    // neighbourhood is read off the global net, in the same order.
+    let neighbourhood = neighbourhood(topo, c, p, q);
+    (
+        Key::around(topo, features, [c, p, q], labels),
+        neighbourhood,
+    )
 }
 
 impl Cache {
-    /// The patch of triangle (c, p, q) (counter-clockwise) of a net, and the
-    /// net vertices of its neighbourhood in the patch's order.
+    /// The patch of a configuration, built the first time it is asked for.
+    pub fn get(&mut self, key: Key) -> std::sync::Arc<SpecialPatch> {
+        self.patches
+            .entry(key)
+            .or_insert_with_key(|key| std::sync::Arc::new(key.build()))
+            .clone()
+    }
+
+    /// The patch of triangle (c, p, q) and its neighbourhood (one at a time).
+    #[cfg(test)]
     pub fn patch(
         &mut self,
         topo: &Topology,
         features: &Features,
-        [c, p, q]: [u32; 3],
+        corner: [u32; 3],
     ) -> (std::sync::Arc<SpecialPatch>, Vec<u32>) {
-        if self.labels.len() < topo.num_vertices() {
-            self.labels = vec![NONE; topo.num_vertices()];
-        }
-        // The local net reproduces the rings of c, p and q, so the
-        // neighbourhood is read off the global net, in the same order.
-        let neighbourhood = neighbourhood(topo, c, p, q);
-        let patch = self
-            .patches
-            .entry(Key::around(topo, features, [c, p, q], &mut self.labels))
-            .or_insert_with_key(|key| std::sync::Arc::new(key.build()))
-            .clone();
-        (patch, neighbourhood)
+        let mut labels = vec![NONE; topo.num_vertices()];
+        let (key, neighbourhood) = configuration(topo, features, corner, &mut labels);
+        (self.get(key), neighbourhood)
     }
 
     /// Number of distinct configurations built.

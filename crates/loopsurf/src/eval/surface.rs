@@ -3,10 +3,12 @@
 //! regular box-spline stencil or its special corner's cached configuration.
 
 use super::affine::{child_containing, rotation};
-use super::special::{Cache, SpecialPatch};
+use super::special::{configuration, Cache, Key, SpecialPatch};
 use super::{box_spline, regular};
 use crate::net::ControlNet;
+use crate::topology::NONE;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::sync::Arc;
 
 /// How one triangle of the once-refined net is evaluated: an index into
@@ -43,31 +45,60 @@ impl Evaluator {
         let fine = net.refine_uniform(1)?.into_net();
         let (topo, features) = (fine.topology(), fine.features());
         let kinds = fine.vertex_kinds();
+        // Per level-1 triangle, in parallel: a regular patch's coefficients,
+        // or a special corner's configuration key and neighbourhood.
+        // Configurations are then shared through the cache, in order.
+        enum Prepared {
+            Regular([DVec3; 15]),
+            Special(u8, Key, Vec<u32>),
+        }
+        const CHUNK: usize = 16384;
+        let prepared: Vec<Prepared> = (0..topo.num_triangles())
+            .collect::<Vec<_>>()
+            .par_chunks(CHUNK)
+            .flat_map_iter(|chunk| {
+                let mut labels = vec![NONE; topo.num_vertices()];
+                chunk
+                    .iter()
+                    .map(|&t| {
+                        if let Some(s) = regular::stencil(topo, features, &kinds, t) {
+                            let control = s.map(|p| p.position(fine.points()));
+                            return Prepared::Regular(box_spline::coefficients(&control));
+                        }
+                        // Child k < 3 of a control triangle has the control
+                        // vertex at its corner k; the centre child is always
+                        // regular.
+                        let corner = t % 4;
+                        assert!(corner < 3, "centre children are regular");
+                        let c = topo.triangles()[t];
+                        let (key, points) = configuration(
+                            topo,
+                            features,
+                            [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]],
+                            &mut labels,
+                        );
+                        Prepared::Special(corner as u8, key, points)
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .collect();
         let mut cache = Cache::default();
         let (mut regular_patches, mut special) = (Vec::new(), Vec::new());
-        let patches = (0..topo.num_triangles())
-            .map(|t| {
-                if let Some(s) = regular::stencil(topo, features, &kinds, t) {
-                    let control = s.map(|p| p.position(fine.points()));
-                    regular_patches.push(box_spline::coefficients(&control));
-                    return Patch::Regular(regular_patches.len() as u32 - 1);
+        let patches = prepared
+            .into_iter()
+            .map(|p| match p {
+                Prepared::Regular(coefficients) => {
+                    regular_patches.push(coefficients);
+                    Patch::Regular(regular_patches.len() as u32 - 1)
                 }
-                // Child k < 3 of a control triangle has the control vertex
-                // at its corner k; the centre child is always regular.
-                let corner = t % 4;
-                assert!(corner < 3, "centre children are regular");
-                let c = topo.triangles()[t];
-                let (patch, points) = cache.patch(
-                    topo,
-                    features,
-                    [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]],
-                );
-                special.push(SpecialCorner {
-                    corner: corner as u8,
-                    patch,
-                    points: points.into_boxed_slice(),
-                });
-                Patch::Special(special.len() as u32 - 1)
+                Prepared::Special(corner, key, points) => {
+                    special.push(SpecialCorner {
+                        corner,
+                        patch: cache.get(key),
+                        points: points.into_boxed_slice(),
+                    });
+                    Patch::Special(special.len() as u32 - 1)
+                }
             })
             .collect();
         regular_patches.shrink_to_fit();
