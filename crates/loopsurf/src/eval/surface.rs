@@ -46,47 +46,48 @@ impl Evaluator {
         let (topo, features) = (fine.topology(), fine.features());
         let kinds = fine.vertex_kinds();
         // Per level-1 triangle, in parallel: a regular patch's coefficients,
-        // or a special corner's configuration key and neighbourhood.
-        // Configurations are then shared through the cache, in order.
+        // or a special corner's configuration key and neighbourhood. Then,
+        // in order, configurations are shared through the cache. Blocks of
+        // one chunk per thread bound the memory held in between.
+        // The regular variant is large, but only one block lives at a time.
+        #[allow(clippy::large_enum_variant)]
         enum Prepared {
             Regular([DVec3; 15]),
             Special(u8, Key, Vec<u32>),
         }
-        const CHUNK: usize = 16384;
-        let prepared: Vec<Prepared> = (0..topo.num_triangles())
-            .collect::<Vec<_>>()
-            .par_chunks(CHUNK)
-            .flat_map_iter(|chunk| {
-                let mut labels = vec![NONE; topo.num_vertices()];
-                chunk
-                    .iter()
-                    .map(|&t| {
-                        if let Some(s) = regular::stencil(topo, features, &kinds, t) {
-                            let control = s.map(|p| p.position(fine.points()));
-                            return Prepared::Regular(box_spline::coefficients(&control));
-                        }
-                        // Child k < 3 of a control triangle has the control
-                        // vertex at its corner k; the centre child is always
-                        // regular.
-                        let corner = t % 4;
-                        assert!(corner < 3, "centre children are regular");
-                        let c = topo.triangles()[t];
-                        let (key, points) = configuration(
-                            topo,
-                            features,
-                            [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]],
-                            &mut labels,
-                        );
-                        Prepared::Special(corner as u8, key, points)
-                    })
-                    .collect::<Vec<_>>()
-            })
-            .collect();
+        let prepare = |t: usize, labels: &mut [u32]| {
+            if let Some(s) = regular::stencil(topo, features, &kinds, t) {
+                let control = s.map(|p| p.position(fine.points()));
+                return Prepared::Regular(box_spline::coefficients(&control));
+            }
+            // Child k < 3 of a control triangle has the control vertex at
+            // its corner k; the centre child is always regular.
+            let corner = t % 4;
+            assert!(corner < 3, "centre children are regular");
+            let c = topo.triangles()[t];
+            let corners = [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]];
+            let (key, points) = configuration(topo, features, corners, labels);
+            Prepared::Special(corner as u8, key, points)
+        };
+        const CHUNK: usize = 8192;
+        let block = CHUNK * rayon::current_num_threads();
+        let ntris = topo.num_triangles();
         let mut cache = Cache::default();
         let (mut regular_patches, mut special) = (Vec::new(), Vec::new());
-        let patches = prepared
-            .into_iter()
-            .map(|p| match p {
+        let mut patches = Vec::with_capacity(ntris);
+        for start in (0..ntris).step_by(block) {
+            let prepared: Vec<Prepared> = (start..(start + block).min(ntris))
+                .collect::<Vec<_>>()
+                .par_chunks(CHUNK)
+                .flat_map_iter(|chunk| {
+                    let mut labels = vec![NONE; topo.num_vertices()];
+                    chunk
+                        .iter()
+                        .map(|&t| prepare(t, &mut labels))
+                        .collect::<Vec<_>>()
+                })
+                .collect();
+            patches.extend(prepared.into_iter().map(|p| match p {
                 Prepared::Regular(coefficients) => {
                     regular_patches.push(coefficients);
                     Patch::Regular(regular_patches.len() as u32 - 1)
@@ -99,8 +100,8 @@ impl Evaluator {
                     });
                     Patch::Special(special.len() as u32 - 1)
                 }
-            })
-            .collect();
+            }));
+        }
         regular_patches.shrink_to_fit();
         special.shrink_to_fit();
         Ok(Evaluator {
