@@ -1,0 +1,741 @@
+//! The surface mesher (seed 000 §4): a triangulation of the limit surface
+//! whose every vertex lies exactly on it, uniform or curvature-adaptive,
+//! within a chord tolerance, with the control net's hard edges and corners
+//! kept as output edges and vertices.
+//!
+//! Each control triangle is cut in its own parameter domain (see
+//! [`pattern`]): its sides into as many segments as the finer of the two
+//! triangles sharing them, its interior into a lattice of its own level.
+//! Points on a control edge are computed once and shared by both sides, so
+//! the result is conforming and watertight wherever the net is. Every
+//! output triangle lies inside one control triangle (its *chart*), which is
+//! what a high-order FE code needs to curve it: its corners' (v, w) in that
+//! chart are [`SurfaceMesh::triangle_params`]. Max–min angle swaps then
+//! improve angles inside each chart ([`swap`]).
+//!
+//! The chord error is measured, not estimated: at the centroid of every
+//! output triangle and the midpoint of every output edge, the distance from
+//! the flat triangle to the surface point at the same parameters (an upper
+//! bound of the distance to the surface there). Where it exceeds the
+//! tolerance, the control triangle or edge is cut finer and rebuilt.
+
+mod density;
+mod pattern;
+mod quality;
+mod swap;
+
+pub use quality::{MeshQuality, TriangleQuality};
+
+use crate::error::{Error, Result};
+use crate::refine::SurfacePoint;
+use crate::surface::Surface;
+use crate::topology::NONE;
+use density::{bend, edge_length, grade, level, level_for_tolerance};
+use glam::{DVec2, DVec3};
+use pattern::{side_param, Pattern};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The chord tolerance `--adapt curvature` uses when none is given, as a
+/// fraction of the bounding-box diagonal.
+pub const DEFAULT_ADAPT_TOLERANCE: f64 = 1e-3;
+
+/// Rounds of measure-and-refine before the tolerance is declared unreachable.
+const MAX_ROUNDS: usize = 16;
+
+/// How dense the mesh should be, before the tolerance refines it further.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Density {
+    /// Every control edge cut into N segments: N² triangles per control
+    /// triangle (the paper's uniform mode).
+    Uniform(u32),
+    /// A target edge length, in model units.
+    Size(f64),
+    /// Only the tolerance decides (with [`Mesher::adapt_curvature`]) or,
+    /// without it, the edge length that meets the tolerance everywhere.
+    FromTolerance,
+}
+
+/// A surface mesher; configure it, then [`Mesher::run`].
+#[derive(Clone)]
+pub struct Mesher<'a> {
+    surface: &'a Surface,
+    density: Density,
+    tolerance: Option<f64>,
+    adapt: bool,
+    swaps: bool,
+    max_triangles: usize,
+}
+
+/// A triangulation of the limit surface.
+#[derive(Debug, Clone)]
+pub struct SurfaceMesh {
+    /// Vertex positions, each exactly the surface at its parameters.
+    pub points: Vec<DVec3>,
+    /// Counter-clockwise like the control net (outward normals stay outward).
+    pub triangles: Vec<[u32; 3]>,
+    /// Per vertex: a control triangle and (v, w) where `eval` gives the vertex.
+    pub params: Vec<SurfacePoint>,
+    /// Per triangle: the control triangle whose parameter domain holds it.
+    pub charts: Vec<u32>,
+    /// The output edges along the net's hard edges, as vertex pairs.
+    pub hard_edges: Vec<[u32; 2]>,
+    /// Largest measured chord error (model units): flat triangle to surface
+    /// at the same parameters, over all centroids and edge midpoints.
+    pub deviation: f64,
+    /// The net's bounding-box diagonal, for relative figures.
+    pub diagonal: f64,
+}
+
+/// One control edge, cut: its inner points from its first to its second
+/// end vertex, and its chords' error.
+struct EdgeCut {
+    points: Vec<DVec3>,
+    params: Vec<DVec2>,
+    deviation: f64,
+}
+
+/// One control triangle, cut: local triangles over the pattern's points,
+/// the interior points, and the chord error inside.
+struct TriangleCut {
+    pattern: Pattern,
+    tris: Vec<[u32; 3]>,
+    points: Vec<DVec3>,
+    params: Vec<DVec2>,
+    deviation: f64,
+}
+
+impl<'a> Mesher<'a> {
+    /// A mesher of `surface`: by default uniform with one segment per edge
+    /// (the control net pushed to the surface), with edge swaps.
+    pub fn new(surface: &'a Surface) -> Mesher<'a> {
+        Mesher {
+            surface,
+            density: Density::Uniform(1),
+            tolerance: None,
+            adapt: false,
+            swaps: true,
+            max_triangles: 200_000_000,
+        }
+    }
+
+    pub fn density(mut self, density: Density) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// The chord tolerance, relative to the bounding-box diagonal.
+    pub fn tolerance(mut self, relative: f64) -> Self {
+        self.tolerance = Some(relative);
+        self
+    }
+
+    /// Let the density follow curvature (seed 000 §4: curvature × area),
+    /// bounded by the tolerance ([`DEFAULT_ADAPT_TOLERANCE`] if none).
+    pub fn adapt_curvature(mut self, adapt: bool) -> Self {
+        self.adapt = adapt;
+        self
+    }
+
+    /// Whether to run the max–min angle swaps (on by default).
+    pub fn swaps(mut self, swaps: bool) -> Self {
+        self.swaps = swaps;
+        self
+    }
+
+    /// Refuse to produce more triangles than this (default 200 million).
+    pub fn max_triangles(mut self, max: usize) -> Self {
+        self.max_triangles = max;
+        self
+    }
+
+    /// Checks the options; every error names the offending value.
+    fn check(&self) -> Result<Option<f64>> {
+        let bad = |m: String| Err(Error::InvalidArgument(m));
+        match self.density {
+            Density::Uniform(0) => return bad("uniform segment count 0: must be at least 1".into()),
+            Density::Uniform(n) if n > 1 << 14 => {
+                return bad(format!(
+                    "uniform segment count {n}: at most {} is supported",
+                    1 << 14
+                ))
+            }
+            Density::Uniform(_) if self.adapt => {
+                return bad("uniform meshing and curvature adaptation exclude each other".into())
+            }
+            Density::Size(h) if !(h.is_finite() && h > 0.0) => {
+                return bad(format!("size {h}: must be a positive number"))
+            }
+            Density::FromTolerance if self.tolerance.is_none() && !self.adapt => {
+                return bad("no density given: pass a uniform count, a size or a tolerance".into())
+            }
+            _ => {}
+        }
+        match self.tolerance {
+            Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => {
+                bad(format!("tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"))
+            }
+            Some(t) => Ok(Some(t)),
+            None if self.adapt => Ok(Some(DEFAULT_ADAPT_TOLERANCE)),
+            None => Ok(None),
+        }
+    }
+
+    /// Meshes the surface.
+    pub fn run(&self) -> Result<SurfaceMesh> {
+        self.run_with_progress(&|_, _| {})
+    }
+
+    /// Meshes the surface, calling `progress(done, total)` as control
+    /// triangles are cut (from several threads; `total` grows when a round
+    /// of refinement is needed).
+    pub fn run_with_progress(&self, progress: &(dyn Fn(u64, u64) + Sync)) -> Result<SurfaceMesh> {
+        let relative = self.check()?;
+        let surface = self.surface;
+        let net = surface.net();
+        let topo = net.topology();
+        let (tris, edges) = (net.triangles(), topo.edges());
+        let diagonal = net.bbox_diagonal();
+        let tolerance = relative.map(|r| r * diagonal);
+
+        let corners = corner_points(surface)?;
+        let mids: Vec<DVec3> = (0..edges.len())
+            .into_par_iter()
+            .map(|e| {
+                let (t, s) = owner(topo, e);
+                let q = side_param(s, 0.5);
+                Ok(surface.eval(t, q.x, q.y)?.x)
+            })
+            .collect::<Result<_>>()?;
+        let lengths: Vec<f64> = (0..edges.len())
+            .map(|e| edge_length(edges[e].map(|v| corners[v as usize].1), mids[e]))
+            .collect();
+        let longest = |t: usize| {
+            topo.triangle_edges()[t]
+                .iter()
+                .map(|&e| lengths[e as usize])
+                .fold(0.0, f64::max)
+        };
+        let bends: Vec<f64> = match tolerance {
+            Some(_) => (0..tris.len())
+                .into_par_iter()
+                .map(|t| bend(surface, t))
+                .collect::<Result<_>>()?,
+            None => Vec::new(),
+        };
+
+        // Initial levels from the density, then the tolerance estimate.
+        let mut levels: Vec<u32> = (0..tris.len())
+            .map(|t| match self.density {
+                Density::Uniform(n) => n,
+                Density::Size(h) => level(longest(t) / h),
+                Density::FromTolerance => 1,
+            })
+            .collect();
+        if let Some(tol) = tolerance {
+            if self.adapt {
+                for (t, l) in levels.iter_mut().enumerate() {
+                    *l = (*l).max(level_for_tolerance(bends[t], tol));
+                }
+            } else if self.density == Density::FromTolerance {
+                // One edge length for the whole surface: the smallest any
+                // triangle's curvature asks for.
+                let h = (0..tris.len())
+                    .filter(|&t| bends[t] > 0.0)
+                    .map(|t| longest(t) * (tol / bends[t]).sqrt())
+                    .fold(f64::INFINITY, f64::min);
+                if h.is_finite() {
+                    for (t, l) in levels.iter_mut().enumerate() {
+                        *l = level(longest(t) / h);
+                    }
+                }
+            }
+        }
+        grade(topo, &mut levels);
+        let mut edge_floor = vec![1u32; edges.len()];
+        let edge_levels = |levels: &[u32], floor: &[u32]| -> Vec<u32> {
+            (0..edges.len())
+                .map(|e| {
+                    let pair = topo.edge_triangles()[e];
+                    pair.iter()
+                        .filter(|&&t| t != NONE)
+                        .map(|&t| levels[t as usize])
+                        .max()
+                        .unwrap_or(1)
+                        .max(floor[e])
+                })
+                .collect()
+        };
+        let mut cuts_per_edge = edge_levels(&levels, &edge_floor);
+
+        let done = AtomicU64::new(0);
+        let total = AtomicU64::new(0);
+        let mut edge_cuts: Vec<Option<EdgeCut>> = (0..edges.len()).map(|_| None).collect();
+        let mut tri_cuts: Vec<Option<TriangleCut>> = (0..tris.len()).map(|_| None).collect();
+        for round in 0.. {
+            self.check_budget(&levels, &cuts_per_edge)?;
+            let dirty_edges: Vec<usize> = (0..edges.len())
+                .filter(|&e| {
+                    edge_cuts[e]
+                        .as_ref()
+                        .map_or(true, |c| c.points.len() + 1 != cuts_per_edge[e] as usize)
+                })
+                .collect();
+            let fresh: Vec<(usize, EdgeCut)> = dirty_edges
+                .par_iter()
+                .map(|&e| Ok((e, cut_edge(surface, e, cuts_per_edge[e], &corners)?)))
+                .collect::<Result<_>>()?;
+            for (e, cut) in fresh {
+                edge_cuts[e] = Some(cut);
+            }
+            let pattern_of = |t: usize| Pattern {
+                sides: topo.triangle_edges()[t].map(|e| cuts_per_edge[e as usize]),
+                level: levels[t],
+            };
+            let dirty: Vec<usize> = (0..tris.len())
+                .filter(|&t| {
+                    tri_cuts[t]
+                        .as_ref()
+                        .map_or(true, |c| c.pattern != pattern_of(t))
+                })
+                .collect();
+            total.fetch_add(dirty.len() as u64, Ordering::Relaxed);
+            let edge_cuts_ref = &edge_cuts;
+            let fresh: Vec<(usize, TriangleCut)> = dirty
+                .par_iter()
+                .map(|&t| {
+                    let boundary =
+                        boundary_points(surface, t, &pattern_of(t), &corners, edge_cuts_ref);
+                    let cut = self.cut_triangle(t, pattern_of(t), boundary, tolerance)?;
+                    let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if n % 256 == 0 {
+                        progress(n, total.load(Ordering::Relaxed));
+                    }
+                    Ok((t, cut))
+                })
+                .collect::<Result<_>>()?;
+            for (t, cut) in fresh {
+                tri_cuts[t] = Some(cut);
+            }
+            let Some(tol) = tolerance else { break };
+            let mut violated = false;
+            for (e, cut) in edge_cuts.iter().enumerate() {
+                let cut = cut.as_ref().expect("every edge is cut");
+                if cut.deviation > tol {
+                    edge_floor[e] = finer(cuts_per_edge[e], cut.deviation / tol);
+                    violated = true;
+                }
+            }
+            for (t, cut) in tri_cuts.iter().enumerate() {
+                let cut = cut.as_ref().expect("every triangle is cut");
+                if cut.deviation > tol {
+                    levels[t] = finer(levels[t], cut.deviation / tol);
+                    violated = true;
+                }
+            }
+            if !violated {
+                break;
+            }
+            if round + 1 == MAX_ROUNDS {
+                let worst = tri_cuts
+                    .iter()
+                    .flatten()
+                    .map(|c| c.deviation)
+                    .fold(0.0, f64::max);
+                return Err(Error::InvalidArgument(format!(
+                    "tolerance {:e} not reached after {MAX_ROUNDS} rounds of refinement (chord error still {:e} of the diagonal)",
+                    relative.unwrap_or(0.0),
+                    worst / diagonal
+                )));
+            }
+            grade(topo, &mut levels);
+            cuts_per_edge = edge_levels(&levels, &edge_floor);
+        }
+        let n = done.load(Ordering::Relaxed);
+        progress(n, n);
+        let edge_cuts: Vec<EdgeCut> = edge_cuts.into_iter().map(|c| c.expect("cut")).collect();
+        let tri_cuts: Vec<TriangleCut> = tri_cuts.into_iter().map(|c| c.expect("cut")).collect();
+        Ok(assemble(surface, &corners, &edge_cuts, &tri_cuts, diagonal))
+    }
+
+    /// Refuses meshes over the triangle budget before building them.
+    fn check_budget(&self, levels: &[u32], cuts: &[u32]) -> Result<()> {
+        let estimate: u128 = levels
+            .iter()
+            .map(|&n| (n as u128) * (n as u128))
+            .sum::<u128>()
+            + cuts.iter().map(|&n| n as u128).sum::<u128>();
+        if estimate > self.max_triangles as u128 || estimate > i32::MAX as u128 {
+            return Err(Error::InvalidArgument(format!(
+                "the requested density needs about {estimate} triangles, over the limit of {}",
+                self.max_triangles.min(i32::MAX as usize)
+            )));
+        }
+        Ok(())
+    }
+
+    /// Cuts control triangle `t`: evaluates its interior points, triangulates,
+    /// swaps, and measures the chord error of every triangle and interior edge.
+    fn cut_triangle(
+        &self,
+        t: usize,
+        pattern: Pattern,
+        mut points: Vec<DVec3>,
+        tolerance: Option<f64>,
+    ) -> Result<TriangleCut> {
+        let surface = self.surface;
+        let params = pattern.params();
+        let nb = pattern.boundary_len();
+        for p in &params[nb..] {
+            points.push(surface.eval(t, p.x, p.y)?.x);
+        }
+        let chord = |ids: &[u32]| -> Result<f64> {
+            let k = ids.len() as f64;
+            let q = ids.iter().map(|&i| params[i as usize]).sum::<DVec2>() / k;
+            let p = ids.iter().map(|&i| points[i as usize]).sum::<DVec3>() / k;
+            chord_error(surface, t, q, p)
+        };
+        let mut tris = pattern.triangles(&points);
+        if self.swaps {
+            let mut failure = None;
+            swap::swap_edges(&mut tris, &params, &points, |a, b| match tolerance {
+                None => true,
+                Some(tol) => match (chord(&a), chord(&b), chord(&[a[0], a[2]])) {
+                    (Ok(x), Ok(y), Ok(z)) => x.max(y).max(z) <= tol,
+                    (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => {
+                        failure = Some(e);
+                        false
+                    }
+                },
+            });
+            if let Some(e) = failure {
+                return Err(e);
+            }
+        }
+        let is_side = |a: u32, b: u32| {
+            (a as usize) < nb && (b as usize) < nb && b as usize == (a as usize + 1) % nb
+        };
+        let mut deviation: f64 = 0.0;
+        for tri in &tris {
+            deviation = deviation.max(chord(tri)?);
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if a < b && !is_side(a, b) && !is_side(b, a) {
+                    deviation = deviation.max(chord(&[a, b])?);
+                }
+            }
+        }
+        Ok(TriangleCut {
+            pattern,
+            tris,
+            points: points.split_off(nb),
+            params: params[nb..].to_vec(),
+            deviation,
+        })
+    }
+}
+
+/// An upper bound of the distance from chord point `p` to the surface,
+/// whose point at the same parameters `q` of triangle `t` is close: the
+/// distance to the surface point one Newton projection step from `q`
+/// (clamped into the triangle), or to S(q) itself if that is nearer. The
+/// plain |p − S(q)| would also count the parametrisation's tangential
+/// drift, which is no error at all, and triple the triangle count; the
+/// projected point is within round-off of the true distance snap measures.
+fn chord_error(surface: &Surface, t: usize, q: DVec2, p: DVec3) -> Result<f64> {
+    let e = surface.eval(t, q.x, q.y)?;
+    let d = p - e.x;
+    let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
+    let det = a * c - b * b;
+    if e.at_special_vertex || det.is_nan() || det <= 1e-24 * a * c {
+        return Ok(d.length());
+    }
+    let (r, s) = (e.xv.dot(d), e.xw.dot(d));
+    let step = DVec2::new(c * r - b * s, a * s - b * r) / det;
+    let mut moved = (q + step).max(DVec2::ZERO);
+    let excess = moved.x + moved.y - 1.0;
+    if excess > 0.0 {
+        moved -= DVec2::splat(excess / 2.0);
+        moved = moved.max(DVec2::ZERO);
+    }
+    let projected = surface.eval(t, moved.x, moved.y.min(1.0 - moved.x))?.x;
+    Ok(projected.distance(p).min(d.length()))
+}
+
+/// A level raised for a measured error `ratio` times the tolerance: the
+/// error falls with the square of the level.
+fn finer(level: u32, ratio: f64) -> u32 {
+    (level + 1).max(density::level(level as f64 * ratio.sqrt() * 1.1))
+}
+
+/// The first triangle of edge `e` and the side of it the edge is.
+fn owner(topo: &crate::Topology, e: usize) -> (usize, usize) {
+    let t = topo.edge_triangles()[e][0] as usize;
+    let s = topo.triangle_edges()[t]
+        .iter()
+        .position(|&x| x as usize == e)
+        .expect("edge of its triangle");
+    (t, s)
+}
+
+/// Per control vertex: its parameters in the first triangle of its fan and
+/// its limit point (unused vertices get a placeholder and are never output).
+fn corner_points(surface: &Surface) -> Result<Vec<(SurfacePoint, DVec3)>> {
+    let net = surface.net();
+    let topo = net.topology();
+    (0..net.points().len())
+        .into_par_iter()
+        .map(|v| {
+            let Some(&t) = topo.fan(v).first() else {
+                return Ok((
+                    SurfacePoint {
+                        tri: NONE,
+                        v: 0.0,
+                        w: 0.0,
+                    },
+                    DVec3::ZERO,
+                ));
+            };
+            let k = net.triangles()[t as usize]
+                .iter()
+                .position(|&c| c as usize == v)
+                .expect("corner of its fan");
+            let q = side_param(k, 0.0);
+            let p = SurfacePoint {
+                tri: t,
+                v: q.x,
+                w: q.y,
+            };
+            Ok((p, surface.eval(t as usize, q.x, q.y)?.x))
+        })
+        .collect()
+}
+
+/// Cuts control edge `e` into `n` segments of equal parameter length and
+/// measures its chords at their midpoints.
+fn cut_edge(
+    surface: &Surface,
+    e: usize,
+    n: u32,
+    corners: &[(SurfacePoint, DVec3)],
+) -> Result<EdgeCut> {
+    let topo = surface.net().topology();
+    let (t, s) = owner(topo, e);
+    let forward = surface.net().triangles()[t][s] == topo.edges()[e][0];
+    let at = |k: f64| {
+        side_param(
+            s,
+            if forward {
+                k / n as f64
+            } else {
+                1.0 - k / n as f64
+            },
+        )
+    };
+    let params: Vec<DVec2> = (1..n).map(|k| at(k as f64)).collect();
+    let points = params
+        .iter()
+        .map(|q| Ok(surface.eval(t, q.x, q.y)?.x))
+        .collect::<Result<Vec<_>>>()?;
+    let ends = topo.edges()[e].map(|v| corners[v as usize].1);
+    let node = |k: usize| {
+        if k == 0 {
+            ends[0]
+        } else if k == n as usize {
+            ends[1]
+        } else {
+            points[k - 1]
+        }
+    };
+    let mut deviation: f64 = 0.0;
+    for k in 0..n as usize {
+        let q = at(k as f64 + 0.5);
+        let chord = 0.5 * (node(k) + node(k + 1));
+        deviation = deviation.max(chord_error(surface, t, q, chord)?);
+    }
+    Ok(EdgeCut {
+        points,
+        params,
+        deviation,
+    })
+}
+
+/// Where boundary point `k` of triangle `t`'s pattern comes from: a control
+/// vertex, or inner point i of a control edge's cut.
+enum Source {
+    Corner(u32),
+    Edge(usize, usize),
+}
+
+fn boundary_source(surface: &Surface, t: usize, pattern: &Pattern, mut k: usize) -> Source {
+    let net = surface.net();
+    let topo = net.topology();
+    let mut s = 0;
+    while k >= pattern.sides[s] as usize {
+        k -= pattern.sides[s] as usize;
+        s += 1;
+    }
+    let corner = net.triangles()[t][s];
+    if k == 0 {
+        return Source::Corner(corner);
+    }
+    let e = topo.triangle_edges()[t][s] as usize;
+    let n = pattern.sides[s] as usize;
+    Source::Edge(
+        e,
+        if topo.edges()[e][0] == corner {
+            k - 1
+        } else {
+            n - k - 1
+        },
+    )
+}
+
+/// Positions of a pattern's boundary points, shared with the neighbours.
+fn boundary_points(
+    surface: &Surface,
+    t: usize,
+    pattern: &Pattern,
+    corners: &[(SurfacePoint, DVec3)],
+    edge_cuts: &[Option<EdgeCut>],
+) -> Vec<DVec3> {
+    let mut out = Vec::with_capacity(pattern.boundary_len() + pattern.interior_params().len());
+    for k in 0..pattern.boundary_len() {
+        out.push(match boundary_source(surface, t, pattern, k) {
+            Source::Corner(v) => corners[v as usize].1,
+            Source::Edge(e, i) => edge_cuts[e].as_ref().expect("edges are cut first").points[i],
+        });
+    }
+    out
+}
+
+/// Numbers the vertices (used control vertices, then edge points edge by
+/// edge, then interior points triangle by triangle) and collects the output.
+fn assemble(
+    surface: &Surface,
+    corners: &[(SurfacePoint, DVec3)],
+    edge_cuts: &[EdgeCut],
+    tri_cuts: &[TriangleCut],
+    diagonal: f64,
+) -> SurfaceMesh {
+    let net = surface.net();
+    let topo = net.topology();
+    let mut corner_index = vec![NONE; corners.len()];
+    let mut points = Vec::new();
+    let mut params = Vec::new();
+    for (v, (p, x)) in corners.iter().enumerate() {
+        if p.tri != NONE {
+            corner_index[v] = points.len() as u32;
+            points.push(*x);
+            params.push(*p);
+        }
+    }
+    let mut edge_start = Vec::with_capacity(edge_cuts.len());
+    for (e, cut) in edge_cuts.iter().enumerate() {
+        edge_start.push(points.len() as u32);
+        let t = topo.edge_triangles()[e][0];
+        points.extend_from_slice(&cut.points);
+        params.extend(cut.params.iter().map(|q| SurfacePoint {
+            tri: t,
+            v: q.x,
+            w: q.y,
+        }));
+    }
+    let mut interior_start = Vec::with_capacity(tri_cuts.len());
+    for (t, cut) in tri_cuts.iter().enumerate() {
+        interior_start.push(points.len() as u32);
+        points.extend_from_slice(&cut.points);
+        params.extend(cut.params.iter().map(|q| SurfacePoint {
+            tri: t as u32,
+            v: q.x,
+            w: q.y,
+        }));
+    }
+    let global = |t: usize, pattern: &Pattern, local: u32| -> u32 {
+        let nb = pattern.boundary_len() as u32;
+        if local >= nb {
+            return interior_start[t] + (local - nb);
+        }
+        match boundary_source(surface, t, pattern, local as usize) {
+            Source::Corner(v) => corner_index[v as usize],
+            Source::Edge(e, i) => edge_start[e] + i as u32,
+        }
+    };
+    let per_chart: Vec<Vec<[u32; 3]>> = tri_cuts
+        .par_iter()
+        .enumerate()
+        .map(|(t, cut)| {
+            cut.tris
+                .iter()
+                .map(|tri| tri.map(|l| global(t, &cut.pattern, l)))
+                .collect()
+        })
+        .collect();
+    let charts = per_chart
+        .iter()
+        .enumerate()
+        .flat_map(|(t, v)| std::iter::repeat(t as u32).take(v.len()))
+        .collect();
+    let triangles = per_chart.into_iter().flatten().collect();
+    let mut hard_edges = Vec::new();
+    for (e, &[a, b]) in topo.edges().iter().enumerate() {
+        if net.features().is_hard_edge(e) {
+            let n = edge_cuts[e].points.len() as u32;
+            let chain: Vec<u32> = std::iter::once(corner_index[a as usize])
+                .chain((0..n).map(|i| edge_start[e] + i))
+                .chain(std::iter::once(corner_index[b as usize]))
+                .collect();
+            hard_edges.extend(chain.windows(2).map(|w| [w[0], w[1]]));
+        }
+    }
+    let deviation = edge_cuts
+        .iter()
+        .map(|c| c.deviation)
+        .chain(tri_cuts.iter().map(|c| c.deviation))
+        .fold(0.0, f64::max);
+    SurfaceMesh {
+        points,
+        triangles,
+        params,
+        charts,
+        hard_edges,
+        deviation,
+        diagonal,
+    }
+}
+
+impl SurfaceMesh {
+    /// The parameters of triangle `t`'s corners in its chart (control
+    /// triangle `charts[t]`): the map a high-order element is curved with.
+    /// A vertex on a control edge or at a control vertex is stored in one
+    /// neighbouring chart; here it is re-expressed in this one.
+    pub fn triangle_params(&self, net: &crate::ControlNet, t: usize) -> [SurfacePoint; 3] {
+        let chart = self.charts[t];
+        self.triangles[t].map(|i| {
+            let p = self.params[i as usize];
+            let (v, w) = reparameterize(net, p, chart).unwrap_or((p.v, p.w));
+            SurfacePoint { tri: chart, v, w }
+        })
+    }
+}
+
+/// The parameters, in control triangle `into`, of a point given in another
+/// control triangle: possible when the point lies on a corner or side that
+/// the two triangles share. `None` otherwise.
+pub fn reparameterize(net: &crate::ControlNet, p: SurfacePoint, into: u32) -> Option<(f64, f64)> {
+    if p.tri == into {
+        return Some((p.v, p.w));
+    }
+    let from = net.triangles().get(p.tri as usize)?;
+    let to = net.triangles().get(into as usize)?;
+    let weights = [1.0 - p.v - p.w, p.v, p.w];
+    let mut out = [0.0; 3];
+    for k in 0..3 {
+        // Points on a side carry round-off in the third weight.
+        if weights[k].abs() > 1e-12 {
+            let j = to.iter().position(|&c| c == from[k])?;
+            out[j] = weights[k];
+        }
+    }
+    Some((out[1], out[2]))
+}

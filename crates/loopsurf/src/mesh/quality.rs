@@ -1,0 +1,113 @@
+//! What a mesh is worth: angles and shape quality per triangle, curvature
+//! per vertex, and the chord error re-measured with snap (the true distance
+//! to the surface, not to the same-parameter point).
+
+use super::swap::max_cosine;
+use super::SurfaceMesh;
+use crate::error::Result;
+use crate::surface::{Curvature, Surface};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Shape of one output triangle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriangleQuality {
+    /// Smallest angle, degrees.
+    pub min_angle: f64,
+    /// 4√3 · area / Σ edge² : 1 for equilateral, 0 for degenerate.
+    pub shape: f64,
+}
+
+/// Summary over all triangles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshQuality {
+    /// Smallest angle of any triangle, degrees.
+    pub min_angle: f64,
+    /// Mean over triangles of their smallest angle, degrees.
+    pub mean_min_angle: f64,
+    /// Smallest shape quality.
+    pub min_shape: f64,
+}
+
+fn triangle_quality(p: [DVec3; 3]) -> TriangleQuality {
+    let min_angle = max_cosine(p[0], p[1], p[2])
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees();
+    let area2 = (p[1] - p[0]).cross(p[2] - p[0]).length();
+    let squares: f64 = (0..3).map(|k| p[k].distance_squared(p[(k + 1) % 3])).sum();
+    let shape = if squares > 0.0 {
+        2.0 * 3f64.sqrt() * area2 / squares
+    } else {
+        0.0
+    };
+    TriangleQuality { min_angle, shape }
+}
+
+impl SurfaceMesh {
+    /// Quality of every triangle, in triangle order.
+    pub fn triangle_quality(&self) -> Vec<TriangleQuality> {
+        self.triangles
+            .par_iter()
+            .map(|t| triangle_quality(t.map(|i| self.points[i as usize])))
+            .collect()
+    }
+
+    /// Minimum and mean angles and the worst shape.
+    pub fn quality(&self) -> MeshQuality {
+        let q = self.triangle_quality();
+        let n = q.len().max(1) as f64;
+        MeshQuality {
+            min_angle: q.iter().map(|q| q.min_angle).fold(f64::INFINITY, f64::min),
+            mean_min_angle: q.iter().map(|q| q.min_angle).sum::<f64>() / n,
+            min_shape: q.iter().map(|q| q.shape).fold(f64::INFINITY, f64::min),
+        }
+    }
+
+    /// Exact curvature at every vertex (unreliable, and zero, exactly at
+    /// special vertices: see [`Curvature::reliable`]).
+    pub fn vertex_curvature(&self, surface: &Surface) -> Result<Vec<Curvature>> {
+        self.params
+            .par_iter()
+            .map(|p| surface.curvature(p.tri as usize, p.v, p.w))
+            .collect()
+    }
+
+    /// The largest distance from the mesh to the surface at the centroid of
+    /// every triangle and the midpoint of every edge, by snap (global
+    /// closest point, started from the chart's parameters).
+    pub fn snap_deviation(&self, surface: &Surface) -> Result<f64> {
+        // Probes: (triangle, weights of its corners); each edge once.
+        let mut edges: Vec<(u64, u32, u8)> = Vec::with_capacity(3 * self.triangles.len());
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k] as u64, tri[(k + 1) % 3] as u64);
+                edges.push(((a.min(b) << 32) | a.max(b), t as u32, k as u8));
+            }
+        }
+        edges.sort_unstable();
+        edges.dedup_by_key(|e| e.0);
+        let centroids = (0..self.triangles.len())
+            .into_par_iter()
+            .map(|t| (t, [1.0 / 3.0; 3]));
+        let midpoints = edges.par_iter().map(|&(_, t, k)| {
+            let mut weights = [0.0; 3];
+            weights[k as usize] = 0.5;
+            weights[(k as usize + 1) % 3] = 0.5;
+            (t as usize, weights)
+        });
+        let net = surface.net();
+        centroids
+            .chain(midpoints)
+            .map(|(t, weights)| {
+                let params = self.triangle_params(net, t);
+                let x: DVec3 = (0..3)
+                    .map(|k| weights[k] * self.points[self.triangles[t][k] as usize])
+                    .sum();
+                let v = (0..3).map(|k| weights[k] * params[k].v).sum::<f64>();
+                let w = (0..3).map(|k| weights[k] * params[k].w).sum::<f64>();
+                Ok(surface.snap_near(x, params[0].tri as usize, v, w)?.distance)
+            })
+            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
+    }
+}
