@@ -5,6 +5,7 @@ mod cmd_eval;
 mod cmd_hard_edges;
 mod cmd_info;
 mod cmd_interpolate;
+mod cmd_mesh;
 mod cmd_refine;
 mod cmd_snap;
 mod input;
@@ -33,6 +34,8 @@ enum Command {
     Eval(cmd_eval::Args),
     /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
     Interpolate(cmd_interpolate::Args),
+    /// The surface mesher: a triangulation of the limit surface within a tolerance, hard edges kept.
+    Mesh(cmd_mesh::Args),
     /// Closest points: reads `x y z` lines on stdin, writes `tri v w x y z distance` per line.
     Snap(cmd_snap::Args),
 }
@@ -84,6 +87,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => cmd_eval::run(args),
         Command::Interpolate(args) => cmd_interpolate::run(args),
         Command::Snap(args) => cmd_snap::run(args),
+        Command::Mesh(args) => cmd_mesh::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -6,7 +6,7 @@
 //! A built surface is immutable, `Send` and `Sync`.
 
 use crate::error::{Error, Result};
-use crate::eval::surface::Evaluator;
+use crate::eval::surface::{AtVertex, ChartEvaluator, Evaluator};
 use crate::net::ControlNet;
 use crate::snap::SnapIndex;
 use glam::DVec3;
@@ -194,6 +194,40 @@ impl Surface {
         })
     }
 
+    /// The position alone at (v, w) of triangle `tri`, bit-identical to
+    /// `eval(tri, v, w)?.x` and several times cheaper (meshers and
+    /// samplers that only place points).
+    pub fn point(&self, tri: usize, v: f64, w: f64) -> Result<DVec3> {
+        let (v, w) = self.check(tri, v, w)?;
+        Ok(self.displaced_point(tri, v, w, self.evaluator.point(tri, v, w)))
+    }
+
+    /// Evaluation confined to triangle `tri`, caching what points of the
+    /// triangle share (see [`ChartEvaluator`]).
+    pub(crate) fn chart(&self, tri: usize) -> Result<Chart<'_>> {
+        self.check(tri, 0.0, 0.0)?;
+        Ok(Chart {
+            surface: self,
+            tri,
+            inner: ChartEvaluator::new(&self.evaluator, tri),
+        })
+    }
+
+    /// Adds the displacement field of triangle `tri` to a position.
+    fn displaced_point(&self, tri: usize, v: f64, w: f64, x: DVec3) -> DVec3 {
+        if self.displacement.is_empty() {
+            return x;
+        }
+        let c = self.net.triangles()[tri].map(|i| i as usize);
+        for (k, corner) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
+            if (v, w) == corner {
+                return self.net.points()[c[k]];
+            }
+        }
+        let d = c.map(|i| self.displacement[i]);
+        x + ((1.0 - v - w) * d[0] + v * d[1] + w * d[2])
+    }
+
     /// Adds the linear displacement field of triangle `tri` to `e`. At a
     /// corner the position is the original point itself, bit for bit.
     fn displaced(&self, tri: usize, v: f64, w: f64, mut e: Evaluation) -> Evaluation {
@@ -214,26 +248,7 @@ impl Surface {
 
     /// The approximating surface at a checked (v, w).
     fn eval_approximating(&self, tri: usize, v: f64, w: f64) -> Evaluation {
-        match self.evaluator.eval(tri, v, w) {
-            Ok([x, xv, xw, xvv, xvw, xww]) => Evaluation {
-                x,
-                xv,
-                xw,
-                xvv,
-                xvw,
-                xww,
-                at_special_vertex: false,
-            },
-            Err(at) => Evaluation {
-                x: at.limit,
-                xv: DVec3::ZERO,
-                xw: DVec3::ZERO,
-                xvv: DVec3::ZERO,
-                xvw: DVec3::ZERO,
-                xww: DVec3::ZERO,
-                at_special_vertex: true,
-            },
-        }
+        evaluation_of(self.evaluator.eval(tri, v, w))
     }
 
     /// Evaluates many points in parallel; fails on the first bad query.
@@ -298,6 +313,57 @@ impl Surface {
         let (v, w) = (v.max(0.0), w.max(0.0));
         let excess = (v + w - 1.0).max(0.0);
         Ok(((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0)))
+    }
+}
+
+/// An evaluator result as an [`Evaluation`]: exactly at a special vertex,
+/// its limit and zero derivatives.
+fn evaluation_of(r: std::result::Result<[DVec3; 6], AtVertex>) -> Evaluation {
+    match r {
+        Ok([x, xv, xw, xvv, xvw, xww]) => Evaluation {
+            x,
+            xv,
+            xw,
+            xvv,
+            xvw,
+            xww,
+            at_special_vertex: false,
+        },
+        Err(at) => Evaluation {
+            x: at.limit,
+            xv: DVec3::ZERO,
+            xw: DVec3::ZERO,
+            xvv: DVec3::ZERO,
+            xvw: DVec3::ZERO,
+            xww: DVec3::ZERO,
+            at_special_vertex: true,
+        },
+    }
+}
+
+/// [`Surface::point`] and [`Surface::eval`] for many points of one
+/// triangle, bit-identical to them.
+pub(crate) struct Chart<'a> {
+    surface: &'a Surface,
+    tri: usize,
+    inner: ChartEvaluator<'a>,
+}
+
+impl Chart<'_> {
+    pub fn point(&mut self, v: f64, w: f64) -> Result<DVec3> {
+        let (v, w) = self.surface.check(self.tri, v, w)?;
+        let x = self.inner.point(v, w);
+        Ok(self.surface.displaced_point(self.tri, v, w, x))
+    }
+
+    pub fn eval(&mut self, v: f64, w: f64) -> Result<Evaluation> {
+        let (v, w) = self.surface.check(self.tri, v, w)?;
+        let e = evaluation_of(self.inner.eval(v, w));
+        Ok(if self.surface.displacement.is_empty() {
+            e
+        } else {
+            self.surface.displaced(self.tri, v, w, e)
+        })
     }
 }
 
@@ -471,6 +537,60 @@ mod tests {
                 "symmetric vertex: radial normal"
             );
             assert!(!s.curvature(t, pv, pw).unwrap().reliable);
+        }
+    }
+}
+
+#[cfg(test)]
+mod point_tests {
+    use super::*;
+
+    /// `point` and a chart's `point`/`eval` are shortcuts of `eval`: the
+    /// same bits everywhere, near and exactly at special vertices, on
+    /// creases and in displacement mode.
+    #[test]
+    fn point_and_chart_match_eval_bit_for_bit() {
+        let mut params = vec![
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.0, 1.0),
+            (0.5, 0.5),
+            (0.5, 0.0),
+            (0.0, 0.5),
+        ];
+        for k in 1..=12 {
+            let f = 0.5f64.powi(3 * k);
+            params.extend([(f, 0.0), (f, f), (1.0 - f, 0.0), (0.3 * f, 1.0 - 2.0 * f)]);
+        }
+        for i in 0..=7 {
+            for j in 0..=7 - i {
+                params.push((i as f64 / 7.0, j as f64 / 7.0));
+            }
+        }
+        for (name, angle, mode) in [
+            ("viking", Some(30.0), SurfaceMode::Approximating),
+            ("sphere", None, SurfaceMode::Approximating),
+            ("cube", Some(30.0), SurfaceMode::Displacement),
+        ] {
+            let ex = crate::examples::by_name(name).unwrap();
+            let mut net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+            if let Some(a) = angle {
+                net.tag_by_angle(a).unwrap();
+            }
+            let surface = Surface::with_mode(&net, mode).unwrap();
+            for t in 0..net.triangles().len() {
+                let mut chart = surface.chart(t).unwrap();
+                for &(v, w) in &params {
+                    let e = surface.eval(t, v, w).unwrap();
+                    assert_eq!(
+                        surface.point(t, v, w).unwrap(),
+                        e.x,
+                        "{name} {t} ({v}, {w})"
+                    );
+                    assert_eq!(chart.point(v, w).unwrap(), e.x, "{name} {t} ({v}, {w})");
+                    assert_eq!(chart.eval(v, w).unwrap(), e, "{name} {t} ({v}, {w})");
+                }
+            }
         }
     }
 }

@@ -62,6 +62,27 @@ pub fn coefficient_rows(control_rows: &[f64], n: usize) -> Vec<f64> {
     out
 }
 
+/// X alone at (v, w) of a patch given by [`coefficients`]: a sixth of the
+/// work of [`eval_coefficients`], for callers that only place points.
+pub fn eval_point(c: &[DVec3; 15], v: f64, w: f64) -> DVec3 {
+    let (v2, vw, w2) = (v * v, v * w, w * w);
+    let (v3, v2w, vw2, w3) = (v2 * v, v2 * w, v * w2, w2 * w);
+    c[0] + c[1] * v
+        + c[2] * w
+        + c[3] * v2
+        + c[4] * vw
+        + c[5] * w2
+        + c[6] * v3
+        + c[7] * v2w
+        + c[8] * vw2
+        + c[9] * w3
+        + c[10] * (v2 * v2)
+        + c[11] * (v3 * w)
+        + c[12] * (v2 * w2)
+        + c[13] * (v * w3)
+        + c[14] * (w2 * w2)
+}
+
 /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of a patch given by [`coefficients`].
 /// Written out term by term: the derivatives of the monomials are mostly
 /// zero, and skipping them is most of the cost of an evaluation.

@@ -126,28 +126,28 @@ impl SpecialPatch {
     /// X, Xs, Xt, Xss, Xst, Xtt.
     /// `None` closer than 2^-[`MAX_RINGS`] to c.
     pub fn eval(&self, points: &[DVec3], around: &[u32], s: f64, t: f64) -> Option<[DVec3; 6]> {
+        let cell = Cell::locate(s, t)?;
+        let (c, offset) = self.cell_coefficients(points, around, cell);
+        let (u, v) = cell.local;
+        let mut d = box_spline::eval_coefficients(&c, u, v);
+        d[0] += offset;
+        Some(cell.pull_back(d))
+    }
+
+    /// The box-spline coefficients of one cell, and the offset to add to
+    /// the position (the limit point when the cell lies in a ring below the
+    /// first, whose coefficients are taken relative to it). Everything an
+    /// evaluation in the cell needs besides (u, v): callers that evaluate
+    /// many points in one cell compute this once.
+    pub fn cell_coefficients(
+        &self,
+        points: &[DVec3],
+        around: &[u32],
+        cell: Cell,
+    ) -> ([DVec3; 15], DVec3) {
         let n = self.size;
-        // Ring number: scale by 2 until the point lies in the first ring.
-        let (mut s, mut t, mut rings) = (s, t, 0usize);
-        while s + t < 0.5 {
-            if rings == MAX_RINGS {
-                return None;
-            }
-            s *= 2.0;
-            t *= 2.0;
-            rings += 1;
-        }
-        let k = if s >= 0.5 {
-            1
-        } else if t >= 0.5 {
-            2
-        } else {
-            3
-        };
-        let map = child(k);
-        let (u, v) = map.apply(s, t);
-        let band = &self.band[k - 1];
-        let d = if rings == 0 {
+        let band = &self.band[cell.k - 1];
+        if cell.rings == 0 {
             // In the first ring the band rows apply to the points themselves.
             let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
                 band[r * n..(r + 1) * n]
@@ -156,69 +156,55 @@ impl SpecialPatch {
                     .map(|(w, &i)| *w * points[i as usize])
                     .sum()
             });
-            box_spline::eval_coefficients(&coefficients, u, v)
+            return (coefficients, DVec3::ZERO);
+        }
+        // Offsets from the limit point, pushed `rings` levels down with the
+        // cached powers; two scratch vectors on the stack for the usual
+        // valences.
+        const INLINE: usize = 24;
+        let mut inline = [DVec3::ZERO; 2 * INLINE];
+        let mut heap = Vec::new();
+        let scratch: &mut [DVec3] = if n <= INLINE {
+            &mut inline[..2 * n]
         } else {
-            // Offsets from the limit point, pushed `rings` levels down with
-            // the cached powers; two scratch vectors on the stack for the
-            // usual valences.
-            const INLINE: usize = 24;
-            let mut inline = [DVec3::ZERO; 2 * INLINE];
-            let mut heap = Vec::new();
-            let scratch: &mut [DVec3] = if n <= INLINE {
-                &mut inline[..2 * n]
-            } else {
-                heap.resize(2 * n, DVec3::ZERO);
-                &mut heap
-            };
-            let (mut y, mut next) = scratch.split_at_mut(n);
-            let limit = self.limit_point(points, around);
-            for (out, &i) in y.iter_mut().zip(around) {
-                *out = points[i as usize] - limit;
-            }
-            fn apply<'a>(
-                power: &[f64],
-                n: usize,
-                y: &mut &'a mut [DVec3],
-                next: &mut &'a mut [DVec3],
-            ) {
-                for (i, out) in next.iter_mut().enumerate() {
-                    *out = power[i * n..(i + 1) * n]
-                        .iter()
-                        .zip(y.iter())
-                        .map(|(w, p)| *w * *p)
-                        .sum();
-                }
-                std::mem::swap(y, next);
-            }
-            // The largest cached power as often as needed, then the bits.
-            let top = 1usize << (POWERS - 1);
-            let mut remaining = rings;
-            while remaining >= 2 * top {
-                apply(&self.powers[POWERS - 1], n, &mut y, &mut next);
-                remaining -= top;
-            }
-            for (j, power) in self.powers.iter().enumerate() {
-                if remaining >> j & 1 == 1 {
-                    apply(power, n, &mut y, &mut next);
-                }
-            }
-            let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
-                band[r * n..(r + 1) * n]
+            heap.resize(2 * n, DVec3::ZERO);
+            &mut heap
+        };
+        let (mut y, mut next) = scratch.split_at_mut(n);
+        let limit = self.limit_point(points, around);
+        for (out, &i) in y.iter_mut().zip(around) {
+            *out = points[i as usize] - limit;
+        }
+        fn apply<'a>(power: &[f64], n: usize, y: &mut &'a mut [DVec3], next: &mut &'a mut [DVec3]) {
+            for (i, out) in next.iter_mut().enumerate() {
+                *out = power[i * n..(i + 1) * n]
                     .iter()
                     .zip(y.iter())
                     .map(|(w, p)| *w * *p)
-                    .sum()
-            });
-            let mut d = box_spline::eval_coefficients(&coefficients, u, v);
-            d[0] += limit;
-            d
-        };
-        // Back through the child map and the 2^rings scaling.
-        let scale = Affine {
-            m: [[(rings as f64).exp2(), 0.0], [0.0, (rings as f64).exp2()]],
-            b: [0.0, 0.0],
-        };
-        Some(map.after(&scale).pull_back(d))
+                    .sum();
+            }
+            std::mem::swap(y, next);
+        }
+        // The largest cached power as often as needed, then the bits.
+        let top = 1usize << (POWERS - 1);
+        let mut remaining = cell.rings;
+        while remaining >= 2 * top {
+            apply(&self.powers[POWERS - 1], n, &mut y, &mut next);
+            remaining -= top;
+        }
+        for (j, power) in self.powers.iter().enumerate() {
+            if remaining >> j & 1 == 1 {
+                apply(power, n, &mut y, &mut next);
+            }
+        }
+        let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
+            band[r * n..(r + 1) * n]
+                .iter()
+                .zip(y.iter())
+                .map(|(w, p)| *w * *p)
+                .sum()
+        });
+        (coefficients, limit)
     }
 
     /// One subdivision step of the neighbourhood (for tests).
@@ -267,6 +253,59 @@ impl SpecialPatch {
             .zip(around)
             .map(|(w, &i)| *w * points[i as usize])
             .sum()
+    }
+}
+
+/// Where a point of a special corner triangle falls in the rings around
+/// its special vertex: the ring (how many halvings of the parameter bring
+/// it into the first), the regular sub-triangle k (1 to 3) of that ring,
+/// and its parameters there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cell {
+    pub rings: usize,
+    pub k: usize,
+    pub local: (f64, f64),
+}
+
+impl Cell {
+    /// The cell of (s, t), s + t > 0; `None` closer than 2^-[`MAX_RINGS`]
+    /// to the special vertex.
+    pub fn locate(s: f64, t: f64) -> Option<Cell> {
+        // Ring number: scale by 2 until the point lies in the first ring.
+        let (mut s, mut t, mut rings) = (s, t, 0usize);
+        while s + t < 0.5 {
+            if rings == MAX_RINGS {
+                return None;
+            }
+            s *= 2.0;
+            t *= 2.0;
+            rings += 1;
+        }
+        let k = if s >= 0.5 {
+            1
+        } else if t >= 0.5 {
+            2
+        } else {
+            3
+        };
+        Some(Cell {
+            rings,
+            k,
+            local: child(k).apply(s, t),
+        })
+    }
+
+    /// Derivatives in the cell's (u, v) carried back to (s, t): through the
+    /// child map and the 2^rings scaling.
+    pub fn pull_back(&self, d: [DVec3; 6]) -> [DVec3; 6] {
+        let scale = Affine {
+            m: [
+                [(self.rings as f64).exp2(), 0.0],
+                [0.0, (self.rings as f64).exp2()],
+            ],
+            b: [0.0, 0.0],
+        };
+        child(self.k).after(&scale).pull_back(d)
     }
 }
 

@@ -2,8 +2,9 @@
 //! at most one special corner, and per triangle of that level either its
 //! regular box-spline stencil or its special corner's cached configuration.
 
+use super::affine::Affine;
 use super::affine::{child_containing, rotation};
-use super::special::{configuration, Cache, Key, SpecialPatch};
+use super::special::{configuration, Cache, Cell, Key, SpecialPatch};
 use super::{box_spline, regular};
 use crate::net::ControlNet;
 use crate::topology::NONE;
@@ -157,6 +158,23 @@ impl Evaluator {
         self.configurations
     }
 
+    /// X alone at (v, w) of control triangle `tri`: the same bits as
+    /// `eval(..)[0]` (or the vertex's limit), at a fraction of the cost on
+    /// regular triangles.
+    pub fn point(&self, tri: usize, v: f64, w: f64) -> DVec3 {
+        let (k, to_child) = child_containing(v, w);
+        match self.patches[4 * tri + k] {
+            Patch::Regular(i) => {
+                let (s, u) = to_child.apply(v, w);
+                box_spline::eval_point(&self.regular[i as usize], s, u)
+            }
+            Patch::Special(_) => match self.eval(tri, v, w) {
+                Ok(d) => d[0],
+                Err(at) => at.limit,
+            },
+        }
+    }
+
     /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of control triangle `tri`, or,
     /// exactly at a special vertex, that vertex (of the refined net) and its
     /// exact limit position: the parametrisation is singular there.
@@ -190,6 +208,100 @@ impl Evaluator {
                     Some(d) => Ok(map.pull_back(d)),
                     None => Err(at_vertex()),
                 }
+            }
+        }
+    }
+}
+
+/// Evaluation inside one control triangle that remembers the coefficients
+/// of every special cell it visits. Near a special vertex most of an
+/// evaluation's cost is pushing the neighbourhood down to the point's ring;
+/// a mesher evaluating thousands of points in one triangle pays it once per
+/// ring instead of once per point. Results are bit-identical to
+/// [`Evaluator::eval`] and [`Evaluator::point`].
+pub struct ChartEvaluator<'a> {
+    evaluator: &'a Evaluator,
+    tri: usize,
+    /// (level-1 child, ring, sub-triangle) → coefficients and offset.
+    cells: Vec<((usize, usize, usize), [DVec3; 15], DVec3)>,
+}
+
+impl<'a> ChartEvaluator<'a> {
+    pub fn new(evaluator: &'a Evaluator, tri: usize) -> Self {
+        ChartEvaluator {
+            evaluator,
+            tri,
+            cells: Vec::new(),
+        }
+    }
+
+    /// The special corner's cell of (v, w), its coefficients and the map
+    /// from (v, w) to the corner's (s, t); `Err` exactly at the vertex.
+    fn special(
+        &mut self,
+        child: usize,
+        i: u32,
+        to_child: Affine,
+        v: f64,
+        w: f64,
+    ) -> Result<(Cell, Affine, usize), AtVertex> {
+        let SpecialCorner {
+            corner,
+            patch,
+            points: around,
+        } = &self.evaluator.special[i as usize];
+        let map = rotation(*corner as usize).after(&to_child);
+        let (s, u) = map.apply(v, w);
+        let at_vertex = || AtVertex {
+            vertex: around[0],
+            limit: patch.limit_point(&self.evaluator.points, around),
+            normal: patch.normal_at_vertex(&self.evaluator.points, around),
+        };
+        if s + u <= 0.0 {
+            return Err(at_vertex());
+        }
+        let cell = Cell::locate(s, u).ok_or_else(at_vertex)?;
+        let key = (child, cell.rings, cell.k);
+        let slot = match self.cells.iter().position(|c| c.0 == key) {
+            Some(slot) => slot,
+            None => {
+                let (c, offset) = patch.cell_coefficients(&self.evaluator.points, around, cell);
+                self.cells.push((key, c, offset));
+                self.cells.len() - 1
+            }
+        };
+        Ok((cell, map, slot))
+    }
+
+    /// X at (v, w); like [`Evaluator::point`].
+    pub fn point(&mut self, v: f64, w: f64) -> DVec3 {
+        let (k, to_child) = child_containing(v, w);
+        match self.evaluator.patches[4 * self.tri + k] {
+            Patch::Regular(i) => {
+                let (s, u) = to_child.apply(v, w);
+                box_spline::eval_point(&self.evaluator.regular[i as usize], s, u)
+            }
+            Patch::Special(i) => match self.special(k, i, to_child, v, w) {
+                Ok((cell, _, slot)) => {
+                    let (c, offset) = (&self.cells[slot].1, self.cells[slot].2);
+                    box_spline::eval_point(c, cell.local.0, cell.local.1) + offset
+                }
+                Err(at) => at.limit,
+            },
+        }
+    }
+
+    /// X and its derivatives at (v, w); like [`Evaluator::eval`].
+    pub fn eval(&mut self, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
+        let (k, to_child) = child_containing(v, w);
+        match self.evaluator.patches[4 * self.tri + k] {
+            Patch::Regular(_) => self.evaluator.eval(self.tri, v, w),
+            Patch::Special(i) => {
+                let (cell, map, slot) = self.special(k, i, to_child, v, w)?;
+                let (c, offset) = (&self.cells[slot].1, self.cells[slot].2);
+                let mut d = box_spline::eval_coefficients(c, cell.local.0, cell.local.1);
+                d[0] += offset;
+                Ok(map.pull_back(cell.pull_back(d)))
             }
         }
     }

@@ -28,7 +28,7 @@ pub use quality::{MeshQuality, TriangleQuality};
 
 use crate::error::{Error, Result};
 use crate::refine::SurfacePoint;
-use crate::surface::Surface;
+use crate::surface::{Chart, Surface};
 use crate::topology::NONE;
 use density::{bend, edge_length, grade, level, level_for_tolerance};
 use glam::{DVec2, DVec3};
@@ -204,7 +204,7 @@ impl<'a> Mesher<'a> {
             .map(|e| {
                 let (t, s) = owner(topo, e);
                 let q = side_param(s, 0.5);
-                Ok(surface.eval(t, q.x, q.y)?.x)
+                surface.point(t, q.x, q.y)
             })
             .collect::<Result<_>>()?;
         let lengths: Vec<f64> = (0..edges.len())
@@ -386,21 +386,28 @@ impl<'a> Mesher<'a> {
         let surface = self.surface;
         let params = pattern.params();
         let nb = pattern.boundary_len();
+        let mut chart = surface.chart(t)?;
         for p in &params[nb..] {
-            points.push(surface.eval(t, p.x, p.y)?.x);
+            points.push(chart.point(p.x, p.y)?);
         }
-        let chord = |ids: &[u32]| -> Result<f64> {
+        let mut chord = |ids: &[u32], points: &[DVec3], enough: f64| -> Result<f64> {
             let k = ids.len() as f64;
             let q = ids.iter().map(|&i| params[i as usize]).sum::<DVec2>() / k;
             let p = ids.iter().map(|&i| points[i as usize]).sum::<DVec3>() / k;
-            chord_error(surface, t, q, p)
+            chord_error(&mut chart, q, p, enough)
         };
         let mut tris = pattern.triangles(&points);
-        if self.swaps {
+        // The lattice of a uniform pattern is already the control triangle's
+        // shape repeated; only transition strips gain from swaps.
+        if self.swaps && !pattern.is_uniform() {
             let mut failure = None;
             swap::swap_edges(&mut tris, &params, &points, |a, b| match tolerance {
                 None => true,
-                Some(tol) => match (chord(&a), chord(&b), chord(&[a[0], a[2]])) {
+                Some(tol) => match (
+                    chord(&a, &points, tol),
+                    chord(&b, &points, tol),
+                    chord(&[a[0], a[2]], &points, tol),
+                ) {
                     (Ok(x), Ok(y), Ok(z)) => x.max(y).max(z) <= tol,
                     (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => {
                         failure = Some(e);
@@ -417,11 +424,11 @@ impl<'a> Mesher<'a> {
         };
         let mut deviation: f64 = 0.0;
         for tri in &tris {
-            deviation = deviation.max(chord(tri)?);
+            deviation = deviation.max(chord(tri, &points, deviation)?);
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
                 if a < b && !is_side(a, b) && !is_side(b, a) {
-                    deviation = deviation.max(chord(&[a, b])?);
+                    deviation = deviation.max(chord(&[a, b], &points, deviation)?);
                 }
             }
         }
@@ -436,30 +443,34 @@ impl<'a> Mesher<'a> {
 }
 
 /// An upper bound of the distance from chord point `p` to the surface,
-/// whose point at the same parameters `q` of triangle `t` is close: the
-/// distance to the surface point one Newton projection step from `q`
-/// (clamped into the triangle), or to S(q) itself if that is nearer. The
-/// plain |p − S(q)| would also count the parametrisation's tangential
-/// drift, which is no error at all, and triple the triangle count; the
-/// projected point is within round-off of the true distance snap measures.
-fn chord_error(surface: &Surface, t: usize, q: DVec2, p: DVec3) -> Result<f64> {
-    let e = surface.eval(t, q.x, q.y)?;
+/// whose point at the same parameters `q` of triangle `t` is close. First
+/// |p − S(q)|; when that exceeds `enough` (a bound already known to hold
+/// elsewhere, so only larger values matter), the distance to the surface
+/// point one Newton projection step from `q` (clamped into the triangle),
+/// if nearer. The plain |p − S(q)| counts the parametrisation's tangential
+/// drift, which is no error at all and would triple the triangle count;
+/// the projected distance is within round-off of what snap measures.
+fn chord_error(chart: &mut Chart, q: DVec2, p: DVec3, enough: f64) -> Result<f64> {
+    let plain = chart.point(q.x, q.y)?.distance(p);
+    if plain <= enough {
+        return Ok(plain);
+    }
+    let e = chart.eval(q.x, q.y)?;
     let d = p - e.x;
     let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
     let det = a * c - b * b;
     if e.at_special_vertex || det.is_nan() || det <= 1e-24 * a * c {
-        return Ok(d.length());
+        return Ok(plain);
     }
     let (r, s) = (e.xv.dot(d), e.xw.dot(d));
     let step = DVec2::new(c * r - b * s, a * s - b * r) / det;
     let mut moved = (q + step).max(DVec2::ZERO);
     let excess = moved.x + moved.y - 1.0;
     if excess > 0.0 {
-        moved -= DVec2::splat(excess / 2.0);
-        moved = moved.max(DVec2::ZERO);
+        moved = (moved - DVec2::splat(excess / 2.0)).max(DVec2::ZERO);
     }
-    let projected = surface.eval(t, moved.x, moved.y.min(1.0 - moved.x))?.x;
-    Ok(projected.distance(p).min(d.length()))
+    let projected = chart.point(moved.x, moved.y.min(1.0 - moved.x))?;
+    Ok(projected.distance(p).min(plain))
 }
 
 /// A level raised for a measured error `ratio` times the tolerance: the
@@ -506,7 +517,7 @@ fn corner_points(surface: &Surface) -> Result<Vec<(SurfacePoint, DVec3)>> {
                 v: q.x,
                 w: q.y,
             };
-            Ok((p, surface.eval(t as usize, q.x, q.y)?.x))
+            Ok((p, surface.point(t as usize, q.x, q.y)?))
         })
         .collect()
 }
@@ -533,9 +544,10 @@ fn cut_edge(
         )
     };
     let params: Vec<DVec2> = (1..n).map(|k| at(k as f64)).collect();
+    let mut chart = surface.chart(t)?;
     let points = params
         .iter()
-        .map(|q| Ok(surface.eval(t, q.x, q.y)?.x))
+        .map(|q| chart.point(q.x, q.y))
         .collect::<Result<Vec<_>>>()?;
     let ends = topo.edges()[e].map(|v| corners[v as usize].1);
     let node = |k: usize| {
@@ -551,7 +563,7 @@ fn cut_edge(
     for k in 0..n as usize {
         let q = at(k as f64 + 0.5);
         let chord = 0.5 * (node(k) + node(k + 1));
-        deviation = deviation.max(chord_error(surface, t, q, chord)?);
+        deviation = deviation.max(chord_error(&mut chart, q, chord, deviation)?);
     }
     Ok(EdgeCut {
         points,

@@ -44,14 +44,14 @@ impl Pattern {
         self.sides[..s].iter().sum()
     }
 
-    fn uniform(&self) -> bool {
+    pub fn is_uniform(&self) -> bool {
         self.sides.iter().all(|&n| n == self.level)
     }
 
     /// The transition pattern with a level below 3 has no inner triangle: the
     /// sides are fanned to the centroid instead.
     fn centroid_fan(&self) -> bool {
-        !self.uniform() && self.level < 3
+        !self.is_uniform() && self.level < 3
     }
 
     /// Parameters of the interior points, in local order after the boundary.
@@ -106,7 +106,7 @@ impl Pattern {
     /// `pos` holds the 3D position of every local point (for the zipper).
     pub fn triangles(&self, pos: &[DVec3]) -> Vec<[u32; 3]> {
         let mut tris = Vec::new();
-        if self.uniform() {
+        if self.is_uniform() {
             self.lattice_triangles(0, self.level, &mut tris, |p, i, j| p.lattice(i, j));
             return tris;
         }

@@ -1,0 +1,180 @@
+//! `loopsurf mesh`: the surface mesher, its output files and its summary.
+
+use crate::input::{Input, SurfaceOptions};
+use indicatif::{ProgressBar, ProgressStyle};
+use loopsurf::io::{self, DataArray};
+use loopsurf::{Density, Error, Mesher, SurfaceMesh};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    input: Input,
+    #[command(flatten)]
+    surface: SurfaceOptions,
+    /// Chord tolerance: every output triangle within EPS × the bounding-box
+    /// diagonal of the surface (at centroids and edge midpoints).
+    #[arg(long, value_name = "EPS")]
+    tolerance: Option<f64>,
+    /// Target edge length, in model units.
+    #[arg(long, value_name = "H", conflicts_with = "uniform")]
+    size: Option<f64>,
+    /// Cut every control edge into N segments (N² triangles per control triangle).
+    #[arg(long, value_name = "N")]
+    uniform: Option<u32>,
+    /// Let the density follow curvature, bounded by the tolerance (1e-3 if
+    /// none is given) and, with --size, by the edge length.
+    #[arg(long, value_enum, value_name = "HOW")]
+    adapt: Option<Adapt>,
+    /// Skip the max–min angle edge swaps.
+    #[arg(long)]
+    no_swaps: bool,
+    /// Skip re-measuring the chord error with snap (the true distance).
+    #[arg(long)]
+    no_verify: bool,
+    /// Output file; the format follows the extension (.vtu .obj .stl .tri .off .ply).
+    #[arg(long, short = 'o', value_name = "OUT")]
+    output: PathBuf,
+    /// Also write one `tri v w` line per output vertex, in output order.
+    #[arg(long, value_name = "FILE")]
+    write_params: Option<PathBuf>,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum Adapt {
+    Curvature,
+}
+
+pub fn run(args: Args) -> Result<(), Error> {
+    io::check_writable(&args.output)?;
+    let net = args.input.load()?;
+    let surface = args.surface.build(&net)?;
+    let density = match (args.uniform, args.size) {
+        (Some(n), _) => Density::Uniform(n),
+        (None, Some(h)) => Density::Size(h),
+        (None, None) => Density::FromTolerance,
+    };
+    let mut mesher = Mesher::new(&surface)
+        .density(density)
+        .adapt_curvature(args.adapt.is_some())
+        .swaps(!args.no_swaps);
+    if let Some(eps) = args.tolerance {
+        mesher = mesher.tolerance(eps);
+    }
+    let bar = ProgressBar::new(net.triangles().len() as u64).with_style(
+        ProgressStyle::with_template("meshing {bar:40} {pos}/{len} control triangles")
+            .expect("valid template"),
+    );
+    let start = Instant::now();
+    let mesh = mesher.run_with_progress(&|done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let snapped = if args.no_verify {
+        None
+    } else {
+        let spinner = ProgressBar::new_spinner().with_message("checking the chord error with snap");
+        spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+        let d = mesh.snap_deviation(&surface)?;
+        spinner.finish_and_clear();
+        Some(d)
+    };
+    write_output(&args.output, &surface, &mesh)?;
+    if let Some(path) = &args.write_params {
+        write_params(path, &mesh)?;
+    }
+    let quality = mesh.quality();
+    let relative = |d: f64| d / mesh.diagonal;
+    crate::write_stdout(|out| {
+        writeln!(
+            out,
+            "input: {} ({} vertices, {} triangles, {} hard edges)",
+            args.input.name(),
+            net.points().len(),
+            net.triangles().len(),
+            net.features().num_hard_edges()
+        )?;
+        writeln!(
+            out,
+            "output: {} vertices, {} triangles, {} hard edges in {seconds:.3} s ({:.2}M triangles/s)",
+            mesh.points.len(),
+            mesh.triangles.len(),
+            mesh.hard_edges.len(),
+            mesh.triangles.len() as f64 / seconds.max(1e-12) / 1e6
+        )?;
+        write!(
+            out,
+            "max deviation: {:.3e} of the diagonal (bound)",
+            relative(mesh.deviation)
+        )?;
+        match snapped {
+            Some(d) => writeln!(out, ", {:.3e} by snap", relative(d))?,
+            None => writeln!(out)?,
+        }
+        writeln!(
+            out,
+            "angles: min {:.2}°, mean of per-triangle minima {:.2}°",
+            quality.min_angle, quality.mean_min_angle
+        )?;
+        writeln!(out, "wrote {}", args.output.display())
+    })
+}
+
+/// The mesh in OUT's format; `.vtu` carries per-vertex parameters and
+/// curvature and per-cell chart and quality.
+fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) -> Result<(), Error> {
+    let is_vtu = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("vtu"));
+    if !is_vtu {
+        return io::write_mesh(path, &mesh.points, &mesh.triangles);
+    }
+    let tri: Vec<i32> = mesh.params.iter().map(|p| p.tri as i32).collect();
+    let v: Vec<f64> = mesh.params.iter().map(|p| p.v).collect();
+    let w: Vec<f64> = mesh.params.iter().map(|p| p.w).collect();
+    let curvature = mesh.vertex_curvature(surface)?;
+    let mean: Vec<f64> = curvature.iter().map(|c| c.mean).collect();
+    let gaussian: Vec<f64> = curvature.iter().map(|c| c.gaussian).collect();
+    let reliable: Vec<i32> = curvature.iter().map(|c| c.reliable as i32).collect();
+    let chart: Vec<i32> = mesh.charts.iter().map(|&c| c as i32).collect();
+    let quality = mesh.triangle_quality();
+    let min_angle: Vec<f64> = quality.iter().map(|q| q.min_angle).collect();
+    let shape: Vec<f64> = quality.iter().map(|q| q.shape).collect();
+    io::write_vtu(
+        path,
+        &mesh.points,
+        &mesh.triangles,
+        &[
+            ("tri", DataArray::I32(&tri)),
+            ("v", DataArray::F64(&v)),
+            ("w", DataArray::F64(&w)),
+            ("mean_curvature", DataArray::F64(&mean)),
+            ("gaussian_curvature", DataArray::F64(&gaussian)),
+            ("curvature_reliable", DataArray::I32(&reliable)),
+        ],
+        &[
+            ("control_tri", DataArray::I32(&chart)),
+            ("min_angle", DataArray::F64(&min_angle)),
+            ("shape_quality", DataArray::F64(&shape)),
+        ],
+    )
+}
+
+/// One `tri v w` line per vertex; Rust's shortest round-trip formatting
+/// reads back bit-exact.
+fn write_params(path: &Path, mesh: &SurfaceMesh) -> Result<(), Error> {
+    let io_error = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::create(path).map_err(io_error)?;
+    let mut out = std::io::BufWriter::new(file);
+    for p in &mesh.params {
+        writeln!(out, "{} {} {}", p.tri, p.v, p.w).map_err(io_error)?;
+    }
+    out.flush().map_err(io_error)
+}
