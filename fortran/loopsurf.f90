@@ -157,6 +157,19 @@ module loopsurf
             integer(c_size_t), intent(out) :: nverts
             type(c_ptr), intent(out) :: tri, vw
         end function
+        integer(c_int) function ls_mesh(surface, uniform, size, tolerance, adapt_curvature, &
+                nverts, xyz, ntris, tris, vertex_tri, vertex_vw, tri_chart, tri_vw) &
+                bind(C, name="ls_mesh")
+            import :: c_int, c_double, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int), value :: uniform, adapt_curvature
+            real(c_double), value :: size, tolerance
+            integer(c_size_t), intent(out) :: nverts, ntris
+            type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
+            ! Optional outputs: c_null_ptr skips one; c_loc of a type(c_ptr)
+            ! variable receives the array.
+            type(c_ptr), value :: tri_chart, tri_vw
+        end function
         subroutine ls_free_array(array) bind(C, name="ls_free_array")
             import :: c_ptr
             type(c_ptr), value :: array

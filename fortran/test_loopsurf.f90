@@ -10,7 +10,7 @@ program test_loopsurf
     integer :: tris(3, 8), i, failures, tri
     integer(c_int32_t) :: tri0(4)
     integer(c_size_t) :: n, nv, nt, nh
-    type(c_ptr) :: net, net2, surf, surf2, surf3, bytes, rxyz, rtris
+    type(c_ptr) :: net, net2, surf, surf2, surf3, bytes, rxyz, rtris, mtri, mvw
     integer(c_int) :: major, minor, patch
 
     failures = 0
@@ -76,6 +76,14 @@ program test_loopsurf
     call check(ls_refine_origins(surf, 2_c_int, n, rxyz, rtris) == LS_OK .and. n == 66, "refine origins")
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
+    ! Mesher, uniform 3 on the octahedron: 8 * 9 triangles, closed.
+    call check(ls_mesh(surf, 3_c_int, 0d0, 0d0, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw, &
+        c_null_ptr, c_null_ptr) == LS_OK, "mesh")
+    call check(nt == 72 .and. nv == 38, "mesh counts")
+    call ls_free_array(rxyz)
+    call ls_free_array(rtris)
+    call ls_free_array(mtri)
+    call ls_free_array(mvw)
     call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
     call ls_free_array(rxyz)
 

@@ -126,6 +126,34 @@ void ls_free_bytes(uint8_t *bytes, size_t n);
 // bytes give LS_ERR_BAD_STREAM.
 int ls_surface_load(const uint8_t *bytes, size_t n, ls_surface **out);
 
+// Meshes the limit surface (see `loopsurf mesh`). Density: `uniform` N ≥ 1
+// cuts every control edge into N segments, else `size` > 0 is a target
+// edge length in model units, else the tolerance alone decides (pass 0 for
+// the ones not used). `tolerance` in (0, 1), relative to the bounding-box
+// diagonal, bounds the chord error (0: none). `adapt_curvature` nonzero lets
+// the density follow curvature, bounded by the tolerance (1e-3 when 0).
+//
+// Writes `nverts`, `xyz` (3 × nverts), `ntris`, `tris` (3 × ntris, 0-based,
+// counter-clockwise like the net) and, per vertex, `vertex_tri` (nverts)
+// and `vertex_vw` (2 × nverts): `ls_evaluate(vertex_tri[i], vw[2i],
+// vw[2i+1])` is vertex i. Optional (NULL to skip): `tri_chart` (ntris), the
+// control triangle holding each output triangle, and `tri_vw` (6 × ntris),
+// its corners' (v, w) in that control triangle — the map a high-order code
+// curves the triangle with. Release every array with `ls_free_array`.
+int ls_mesh(const ls_surface *surface,
+            int uniform,
+            double size,
+            double tolerance,
+            int adapt_curvature,
+            size_t *nverts,
+            double **xyz,
+            size_t *ntris,
+            int32_t **tris,
+            int32_t **vertex_tri,
+            double **vertex_vw,
+            int32_t **tri_chart,
+            double **tri_vw);
+
 // Reads and validates a mesh file (.off .obj .ply .stl .tri, by extension)
 // into a new net. Errors name the file and, for text formats, the line.
 int ls_net_load(const char *path, ls_net **out);

@@ -340,6 +340,59 @@ static void test_refine(void) {
     ls_surface_free(surface);
 }
 
+/* ls_mesh: every vertex is the surface at its parameters, every triangle's
+ * corners are the surface at their chart parameters, the closed octahedron
+ * gives a closed mesh (V - E + F = 2), and bad arguments fail cleanly. */
+static void test_mesh(void) {
+    ls_surface* surface = octahedron(NULL);
+    size_t nv = 0, nt = 0;
+    double *xyz = NULL, *vw = NULL, *tvw = NULL;
+    int32_t *tris = NULL, *vtri = NULL, *chart = NULL;
+    double r[18];
+    EXPECT(ls_mesh(surface, 3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &chart, &tvw), LS_OK);
+    CHECK(nt == 8 * 9);
+    CHECK(nv == 6 + 12 * 2 + 8 * 1);
+    CHECK(nv - (3 * nt) / 2 + nt == 2);
+    for (size_t i = 0; i < nv; i++) {
+        EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
+        for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - xyz[3 * i + k]) < 1e-13);
+    }
+    for (size_t t = 0; t < nt; t++) {
+        for (int c = 0; c < 3; c++) {
+            int32_t v = tris[3 * t + c];
+            EXPECT(ls_evaluate(surface, chart[t], tvw[6 * t + 2 * c], tvw[6 * t + 2 * c + 1], r), LS_OK);
+            for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - xyz[3 * v + k]) < 1e-13);
+        }
+    }
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    ls_free_array(chart);
+    ls_free_array(tvw);
+
+    /* Tolerance-driven and adaptive, optional outputs skipped. */
+    EXPECT(ls_mesh(surface, 0, 0, 1e-3, 1, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
+    CHECK(nt > 8 && nv - (3 * nt) / 2 + nt == 2);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+
+    xyz = (double*)&SENTINEL;
+    EXPECT(ls_mesh(NULL, 2, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh(surface, 2, 0, 0, 0, &nv, NULL, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh(surface, 2, 0, 0, 0, &nv, &xyz, &nt, &tris, NULL, &vw, NULL, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh(surface, -1, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_mesh(surface, 2, 0.1, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_mesh(surface, 0, 0, 2.0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "ls_mesh") != NULL);
+    CHECK(strstr(ls_last_error(), "tolerance") != NULL);
+    EXPECT(ls_mesh(surface, 0, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
+    CHECK(xyz == (double*)&SENTINEL); /* outputs untouched on failure */
+    ls_surface_free(surface);
+}
+
 static void test_streams(void) {
     ls_net* net = NULL;
     ls_surface* surface = NULL;
@@ -398,6 +451,7 @@ int main(int argc, char** argv) {
     test_nets(data_dir);
     test_queries();
     test_refine();
+    test_mesh();
     test_streams();
     if (failures) {
         fprintf(stderr, "%d checks failed\n", failures);

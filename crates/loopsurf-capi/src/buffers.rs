@@ -23,6 +23,32 @@ pub(crate) unsafe fn malloc_copy<T: Copy>(data: &[T]) -> Result<*mut T, Fail> {
     Ok(p)
 }
 
+/// `malloc` blocks under construction: freed again on drop unless handed
+/// over, so a function that fails half-way leaks nothing.
+#[derive(Default)]
+pub(crate) struct Blocks(Vec<*mut c_void>);
+
+impl Blocks {
+    pub(crate) unsafe fn copy<T: Copy>(&mut self, data: &[T]) -> Result<*mut T, Fail> {
+        let p = malloc_copy(data)?;
+        self.0.push(p as *mut c_void);
+        Ok(p)
+    }
+
+    /// The caller now owns every block.
+    pub(crate) fn hand_over(mut self) {
+        self.0.clear();
+    }
+}
+
+impl Drop for Blocks {
+    fn drop(&mut self) {
+        for &p in &self.0 {
+            unsafe { libc::free(p) };
+        }
+    }
+}
+
 const _: () = assert!(std::mem::size_of::<loopsurf::DVec3>() == 3 * std::mem::size_of::<f64>());
 
 /// A level count from C: 0 or more (the library caps it).

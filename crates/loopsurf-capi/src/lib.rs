@@ -17,11 +17,13 @@
 #![allow(clippy::missing_safety_doc)]
 
 mod buffers;
+mod mesh;
 mod net;
 mod status;
 mod surface;
 
 pub use buffers::*;
+pub use mesh::*;
 pub use net::*;
 pub use status::*;
 pub use surface::*;

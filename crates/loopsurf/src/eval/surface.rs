@@ -222,8 +222,15 @@ impl Evaluator {
 pub struct ChartEvaluator<'a> {
     evaluator: &'a Evaluator,
     tri: usize,
-    /// (level-1 child, ring, sub-triangle) → coefficients and offset.
-    cells: Vec<((usize, usize, usize), [DVec3; 15], DVec3)>,
+    cells: Vec<CachedCell>,
+}
+
+/// The coefficients and position offset of one special cell, keyed by the
+/// level-1 child it lies in, its ring and its sub-triangle.
+struct CachedCell {
+    key: (usize, usize, usize),
+    coefficients: [DVec3; 15],
+    offset: DVec3,
 }
 
 impl<'a> ChartEvaluator<'a> {
@@ -262,11 +269,15 @@ impl<'a> ChartEvaluator<'a> {
         }
         let cell = Cell::locate(s, u).ok_or_else(at_vertex)?;
         let key = (child, cell.rings, cell.k);
-        let slot = match self.cells.iter().position(|c| c.0 == key) {
+        let slot = match self.cells.iter().position(|c| c.key == key) {
             Some(slot) => slot,
             None => {
                 let (c, offset) = patch.cell_coefficients(&self.evaluator.points, around, cell);
-                self.cells.push((key, c, offset));
+                self.cells.push(CachedCell {
+                    key,
+                    coefficients: c,
+                    offset,
+                });
                 self.cells.len() - 1
             }
         };
@@ -283,7 +294,12 @@ impl<'a> ChartEvaluator<'a> {
             }
             Patch::Special(i) => match self.special(k, i, to_child, v, w) {
                 Ok((cell, _, slot)) => {
-                    let (c, offset) = (&self.cells[slot].1, self.cells[slot].2);
+                    let CachedCell {
+                        coefficients: c,
+                        offset,
+                        ..
+                    } = &self.cells[slot];
+                    let offset = *offset;
                     box_spline::eval_point(c, cell.local.0, cell.local.1) + offset
                 }
                 Err(at) => at.limit,
@@ -298,7 +314,12 @@ impl<'a> ChartEvaluator<'a> {
             Patch::Regular(_) => self.evaluator.eval(self.tri, v, w),
             Patch::Special(i) => {
                 let (cell, map, slot) = self.special(k, i, to_child, v, w)?;
-                let (c, offset) = (&self.cells[slot].1, self.cells[slot].2);
+                let CachedCell {
+                    coefficients: c,
+                    offset,
+                    ..
+                } = &self.cells[slot];
+                let offset = *offset;
                 let mut d = box_spline::eval_coefficients(c, cell.local.0, cell.local.1);
                 d[0] += offset;
                 Ok(map.pull_back(cell.pull_back(d)))

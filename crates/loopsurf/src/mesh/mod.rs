@@ -611,7 +611,7 @@ fn boundary_points(
     corners: &[(SurfacePoint, DVec3)],
     edge_cuts: &[Option<EdgeCut>],
 ) -> Vec<DVec3> {
-    let mut out = Vec::with_capacity(pattern.boundary_len() + pattern.interior_params().len());
+    let mut out = Vec::with_capacity(pattern.boundary_len() + pattern.interior_len());
     for k in 0..pattern.boundary_len() {
         out.push(match boundary_source(surface, t, pattern, k) {
             Source::Corner(v) => corners[v as usize].1,

@@ -54,6 +54,15 @@ impl Pattern {
         !self.is_uniform() && self.level < 3
     }
 
+    /// Number of interior points.
+    pub fn interior_len(&self) -> usize {
+        if self.centroid_fan() {
+            return 1;
+        }
+        let n = self.level as usize;
+        n.saturating_sub(1) * n.saturating_sub(2) / 2
+    }
+
     /// Parameters of the interior points, in local order after the boundary.
     pub fn interior_params(&self) -> Vec<DVec2> {
         if self.centroid_fan() {
@@ -61,7 +70,7 @@ impl Pattern {
         }
         let n = self.level as usize;
         let inv = 1.0 / n as f64;
-        let mut out = Vec::with_capacity(n.saturating_sub(1) * n.saturating_sub(2) / 2);
+        let mut out = Vec::with_capacity(self.interior_len());
         for j in 1..n.saturating_sub(1) {
             for i in 1..n - j {
                 out.push(DVec2::new(i as f64 * inv, j as f64 * inv));
@@ -72,12 +81,13 @@ impl Pattern {
 
     /// Parameters of every local point: boundary, then interior.
     pub fn params(&self) -> Vec<DVec2> {
-        let mut out = Vec::with_capacity(self.boundary_len());
+        let mut out = Vec::with_capacity(self.boundary_len() + self.interior_len());
         for s in 0..3 {
             let n = self.sides[s];
             out.extend((0..n).map(|k| side_param(s, k as f64 / n as f64)));
         }
         out.extend(self.interior_params());
+        debug_assert_eq!(out.len(), self.boundary_len() + self.interior_len());
         out
     }
 
