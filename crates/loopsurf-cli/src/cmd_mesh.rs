@@ -16,10 +16,15 @@ pub struct Args {
     surface: SurfaceOptions,
     /// Chord tolerance: every output triangle within EPS × the bounding-box
     /// diagonal of the surface (at centroids and edge midpoints).
-    #[arg(long, value_name = "EPS")]
+    #[arg(long, value_name = "EPS", allow_hyphen_values = true)]
     tolerance: Option<f64>,
     /// Target edge length, in model units.
-    #[arg(long, value_name = "H", conflicts_with = "uniform")]
+    #[arg(
+        long,
+        value_name = "H",
+        conflicts_with = "uniform",
+        allow_negative_numbers = true
+    )]
     size: Option<f64>,
     /// Cut every control edge into N segments (N² triangles per control triangle).
     #[arg(long, value_name = "N")]

@@ -313,3 +313,127 @@ fn snap_answers_read_back_bit_exact_and_bad_lines_are_named() {
         "line 1",
     );
 }
+
+/// The README's main job: the mesher on the built-in Viking, with the
+/// summary, the .vtu arrays and a params file that reads back bit-exact.
+#[test]
+fn mesh_the_viking_writes_its_summary_and_files() {
+    let vtu = scratch("viking.vtu");
+    let params = scratch("viking.params");
+    let out = loopsurf(&[
+        "mesh",
+        "--example",
+        "viking",
+        "--hard-angle",
+        "30",
+        "--adapt",
+        "curvature",
+        "-o",
+        vtu.to_str().unwrap(),
+        "--write-params",
+        params.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let summary = text(&out.stdout);
+    for needle in [
+        "input: example:viking (842 vertices, 1680 triangles, 80 hard edges)",
+        "triangles/s",
+        "max deviation",
+        "by snap",
+        "angles: min",
+    ] {
+        assert!(
+            summary.contains(needle),
+            "summary lacks '{needle}':\n{summary}"
+        );
+    }
+    let xml = std::fs::read_to_string(&vtu).unwrap();
+    for name in [
+        "tri",
+        "v",
+        "w",
+        "mean_curvature",
+        "gaussian_curvature",
+        "control_tri",
+        "min_angle",
+        "shape_quality",
+    ] {
+        assert!(
+            xml.contains(&format!("Name=\"{name}\"")),
+            "vtu lacks {name}"
+        );
+    }
+    // Every params line evaluates to its vertex, read back bit-exact.
+    let ex = loopsurf::examples::by_name("viking").unwrap();
+    let mut net = loopsurf::ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+    net.tag_by_angle(30.0).unwrap();
+    let surface = loopsurf::Surface::new(&net).unwrap();
+    let mesh = loopsurf::Mesher::new(&surface)
+        .adapt_curvature(true)
+        .density(loopsurf::Density::FromTolerance)
+        .run()
+        .unwrap();
+    let lines: Vec<String> = std::fs::read_to_string(&params)
+        .unwrap()
+        .lines()
+        .map(String::from)
+        .collect();
+    assert_eq!(lines.len(), mesh.points.len());
+    for (line, p) in lines.iter().zip(&mesh.params) {
+        let f: Vec<&str> = line.split(' ').collect();
+        assert_eq!(f[0].parse::<u32>().unwrap(), p.tri);
+        assert_eq!(f[1].parse::<f64>().unwrap().to_bits(), p.v.to_bits());
+        assert_eq!(f[2].parse::<f64>().unwrap().to_bits(), p.w.to_bits());
+    }
+    for ext in ["obj", "stl", "tri"] {
+        let path = scratch(&format!("viking3.{ext}"));
+        let out = loopsurf(&[
+            "mesh",
+            "--example",
+            "viking",
+            "--uniform",
+            "3",
+            "--no-verify",
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let back = loopsurf::ControlNet::read(&path).unwrap();
+        assert_eq!(back.triangles().len(), 9 * 1680, "{ext}");
+    }
+}
+
+#[test]
+fn mesh_rejects_bad_options_with_one_line() {
+    let o = scratch("never.obj");
+    let o = o.to_str().unwrap();
+    let mesh = |extra: &[&str]| {
+        let mut args = vec!["mesh", "--example", "cube", "-o", o];
+        args.extend_from_slice(extra);
+        loopsurf(&args)
+    };
+    assert_clean_failure(&mesh(&[]), "no density");
+    assert_clean_failure(&mesh(&["--tolerance", "0"]), "tolerance 0");
+    assert_clean_failure(&mesh(&["--tolerance", "-1e-3"]), "tolerance");
+    assert_clean_failure(&mesh(&["--size", "-2"]), "size -2");
+    assert_clean_failure(&mesh(&["--uniform", "0"]), "uniform segment count 0");
+    assert_clean_failure(&mesh(&["--uniform", "3", "--size", "1"]), "--size");
+    assert_clean_failure(
+        &mesh(&["--uniform", "3", "--adapt", "curvature"]),
+        "exclude",
+    );
+    assert_clean_failure(&mesh(&["--adapt", "nonsense"]), "nonsense");
+    assert_clean_failure(&mesh(&["--uniform", "100000"]), "at most");
+    assert_clean_failure(
+        &loopsurf(&[
+            "mesh",
+            "--example",
+            "cube",
+            "--uniform",
+            "2",
+            "-o",
+            "x.unknown",
+        ]),
+        "x.unknown",
+    );
+}

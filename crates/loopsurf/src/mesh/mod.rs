@@ -324,6 +324,14 @@ impl<'a> Mesher<'a> {
                 if cut.deviation > tol {
                     edge_floor[e] = finer(cuts_per_edge[e], cut.deviation / tol);
                     violated = true;
+                    // Keep the triangles on both sides within the grading
+                    // of their side, or their strips would fan.
+                    let floor = level(edge_floor[e] as f64 / density::GRADING);
+                    for &t in &topo.edge_triangles()[e] {
+                        if t != NONE {
+                            levels[t as usize] = levels[t as usize].max(floor);
+                        }
+                    }
                 }
             }
             for (t, cut) in tri_cuts.iter().enumerate() {

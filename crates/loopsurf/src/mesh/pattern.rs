@@ -168,18 +168,21 @@ impl Pattern {
 }
 
 /// Triangulates the strip between an outer chain and the parallel inner
-/// chain (same direction, inner on the left), taking the shorter diagonal.
+/// chain (same direction, inner on the left), taking the shorter 3D
+/// diagonal at each step: the chains advance in step, so no point fans out
+/// further than the ratio of their segment counts requires. (Choosing by
+/// angle instead is myopic: it can fan one corner to a whole chain.)
 fn zip(outer: &[u32], inner: &[u32], pos: &[DVec3], tris: &mut Vec<[u32; 3]>) {
     let (mut a, mut b) = (0, 0);
     let (na, nb) = (outer.len() - 1, inner.len() - 1);
+    let p = |k: usize| pos[outer[k] as usize];
+    let q = |k: usize| pos[inner[k] as usize];
     while a < na || b < nb {
         let advance_outer = if a == na {
             false
         } else if b == nb {
             true
         } else {
-            let p = |k: usize| pos[outer[k] as usize];
-            let q = |k: usize| pos[inner[k] as usize];
             p(a + 1).distance_squared(q(b)) <= p(a).distance_squared(q(b + 1))
         };
         if advance_outer {
