@@ -14,14 +14,21 @@ use glam::DVec3;
 /// two segments to one.
 pub(crate) const GRADING: f64 = 2.0;
 
-/// Interior sample parameters for the curvature estimate: the centroid and
-/// the centres of the corner sub-triangles (away from special corners,
-/// where derivatives are not reported).
-const SAMPLES: [(f64, f64); 4] = [
+/// Interior sample parameters for the curvature estimate: the centroid,
+/// points towards each corner and each side (curvature peaks next to
+/// irregular vertices), none exactly on the boundary (special corners
+/// report no derivatives).
+const SAMPLES: [(f64, f64); 10] = [
     (1.0 / 3.0, 1.0 / 3.0),
-    (2.0 / 3.0, 1.0 / 6.0),
-    (1.0 / 6.0, 2.0 / 3.0),
-    (1.0 / 6.0, 1.0 / 6.0),
+    (0.05, 0.05),
+    (0.9, 0.05),
+    (0.05, 0.9),
+    (0.45, 0.05),
+    (0.45, 0.5),
+    (0.05, 0.45),
+    (0.2, 0.2),
+    (0.6, 0.2),
+    (0.2, 0.6),
 ];
 
 /// Per control triangle: an estimate of the chord error of its level-1

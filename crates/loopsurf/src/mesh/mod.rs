@@ -106,12 +106,13 @@ struct TriangleCut {
 }
 
 impl<'a> Mesher<'a> {
-    /// A mesher of `surface`: by default uniform with one segment per edge
-    /// (the control net pushed to the surface), with edge swaps.
+    /// A mesher of `surface`, with edge swaps. The density comes from the
+    /// tolerance or curvature adaptation unless [`Mesher::density`] sets it;
+    /// with none of the three, [`Mesher::run`] says so.
     pub fn new(surface: &'a Surface) -> Mesher<'a> {
         Mesher {
             surface,
-            density: Density::Uniform(1),
+            density: Density::FromTolerance,
             tolerance: None,
             adapt: false,
             swaps: true,
@@ -272,6 +273,8 @@ impl<'a> Mesher<'a> {
         let total = AtomicU64::new(0);
         let mut edge_cuts: Vec<Option<EdgeCut>> = (0..edges.len()).map(|_| None).collect();
         let mut tri_cuts: Vec<Option<TriangleCut>> = (0..tris.len()).map(|_| None).collect();
+        let mut edge_history = vec![None; edges.len()];
+        let mut tri_history = vec![None; tris.len()];
         for round in 0.. {
             self.check_budget(&levels, &cuts_per_edge)?;
             let dirty_edges: Vec<usize> = (0..edges.len())
@@ -322,7 +325,8 @@ impl<'a> Mesher<'a> {
             for (e, cut) in edge_cuts.iter().enumerate() {
                 let cut = cut.as_ref().expect("every edge is cut");
                 if cut.deviation > tol {
-                    edge_floor[e] = finer(cuts_per_edge[e], cut.deviation / tol);
+                    edge_floor[e] =
+                        finer(cuts_per_edge[e], cut.deviation, tol, &mut edge_history[e]);
                     violated = true;
                     // Keep the triangles on both sides within the grading
                     // of their side, or their strips would fan.
@@ -337,7 +341,7 @@ impl<'a> Mesher<'a> {
             for (t, cut) in tri_cuts.iter().enumerate() {
                 let cut = cut.as_ref().expect("every triangle is cut");
                 if cut.deviation > tol {
-                    levels[t] = finer(levels[t], cut.deviation / tol);
+                    levels[t] = finer(levels[t], cut.deviation, tol, &mut tri_history[t]);
                     violated = true;
                 }
             }
@@ -405,11 +409,19 @@ impl<'a> Mesher<'a> {
             chord_error(&mut chart, q, p, enough)
         };
         let mut tris = pattern.triangles(&points);
-        // The lattice of a uniform pattern is already the control triangle's
-        // shape repeated; only transition strips gain from swaps.
-        if self.swaps && !pattern.is_uniform() {
+        // The lattice repeats the chart's shape: its edges are already
+        // max-min (Delaunay) unless the chart is obtuse, in which case the
+        // whole chart is swapped; otherwise only the transition strips
+        // (their diagonals, not the edges they share with the lattice),
+        // which keeps swapping off the bulk of the work.
+        let [a, b, c] = pattern.corners().map(|i| points[i as usize]);
+        let obtuse =
+            (b - a).dot(c - a) < 0.0 || (a - b).dot(c - b) < 0.0 || (a - c).dot(b - c) < 0.0;
+        let swap_from = if obtuse { 0 } else { pattern.strip_start() };
+        if self.swaps && swap_from < tris.len() {
             let mut failure = None;
-            swap::swap_edges(&mut tris, &params, &points, |a, b| match tolerance {
+            let strips = &mut tris[swap_from..];
+            swap::swap_edges(strips, &params, &points, |a, b| match tolerance {
                 None => true,
                 Some(tol) => match (
                     chord(&a, &points, tol),
@@ -481,10 +493,23 @@ fn chord_error(chart: &mut Chart, q: DVec2, p: DVec3, enough: f64) -> Result<f64
     Ok(projected.distance(p).min(plain))
 }
 
-/// A level raised for a measured error `ratio` times the tolerance: the
-/// error falls with the square of the level.
-fn finer(level: u32, ratio: f64) -> u32 {
-    (level + 1).max(density::level(level as f64 * ratio.sqrt() * 1.1))
+/// The level that should bring a measured chord error `error` down to
+/// `tolerance`. Smooth patches converge with the square of the level; next
+/// to irregular vertices (curvature unbounded above valence 6) and along
+/// their edges more slowly, so the rate is taken from the previous
+/// measurement of the same element when there is one (`last`: its level
+/// and error), which saves rounds of rebuilding.
+fn finer(level: u32, error: f64, tolerance: f64, last: &mut Option<(u32, f64)>) -> u32 {
+    let rate = match *last {
+        Some((n0, e0)) if n0 < level && e0 > error => {
+            ((e0 / error).ln() / (level as f64 / n0 as f64).ln()).clamp(0.5, 2.0)
+        }
+        _ => 2.0,
+    };
+    *last = Some((level, error));
+    (level + 1).max(density::level(
+        level as f64 * (error / tolerance).powf(1.0 / rate) * 1.05,
+    ))
 }
 
 /// The first triangle of edge `e` and the side of it the edge is.

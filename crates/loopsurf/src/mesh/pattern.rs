@@ -44,6 +44,11 @@ impl Pattern {
         self.sides[..s].iter().sum()
     }
 
+    /// Local indices of the three corners.
+    pub fn corners(&self) -> [u32; 3] {
+        [0, 1, 2].map(|s| self.side_start(s))
+    }
+
     pub fn is_uniform(&self) -> bool {
         self.sides.iter().all(|&n| n == self.level)
     }
@@ -110,6 +115,18 @@ impl Pattern {
         let n = self.level;
         let row_start = (j - 1) * (n - 1) - (j - 1) * j / 2;
         self.boundary_len() as u32 + row_start + (i - 1)
+    }
+
+    /// Index of the first transition-strip triangle in [`Pattern::triangles`]
+    /// (the lattice triangles come first); none in a uniform pattern.
+    pub fn strip_start(&self) -> usize {
+        if self.is_uniform() {
+            (self.level * self.level) as usize
+        } else if self.centroid_fan() {
+            0
+        } else {
+            ((self.level - 3) * (self.level - 3)) as usize
+        }
     }
 
     /// The triangles, counter-clockwise in (v, w) like the control triangle.
@@ -222,6 +239,11 @@ mod tests {
                 let params = p.params();
                 let pos: Vec<DVec3> = params.iter().map(|q| q.extend(0.0)).collect();
                 let tris = p.triangles(&pos);
+                let strips = p.strip_start();
+                assert!(strips <= tris.len(), "{p:?}");
+                if p.is_uniform() {
+                    assert_eq!(strips, tris.len());
+                }
                 let total: f64 = tris.iter().map(|&t| area(&params, t)).sum();
                 assert!((total - 0.5).abs() < 1e-12, "{p:?}: area {total}");
                 for &t in &tris {
