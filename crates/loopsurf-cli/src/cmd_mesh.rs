@@ -111,15 +111,17 @@ pub fn run(args: Args) -> Result<(), Error> {
             mesh.hard_edges.len(),
             mesh.triangles.len() as f64 / seconds.max(1e-12) / 1e6
         )?;
-        write!(
-            out,
-            "max deviation: {:.3e} of the diagonal (bound)",
-            relative(mesh.deviation)
-        )?;
-        match snapped {
-            Some(d) => writeln!(out, ", {:.3e} by snap", relative(d))?,
-            None => writeln!(out)?,
-        }
+        let line = match (mesh.deviation, snapped) {
+            (Some(b), Some(s)) => format!(
+                "{:.3e} of the diagonal (bound), {:.3e} by snap",
+                relative(b),
+                relative(s)
+            ),
+            (Some(b), None) => format!("{:.3e} of the diagonal (bound)", relative(b)),
+            (None, Some(s)) => format!("{:.3e} of the diagonal by snap", relative(s)),
+            (None, None) => "not measured (no --tolerance, and --no-verify)".into(),
+        };
+        writeln!(out, "max deviation: {line}")?;
         writeln!(
             out,
             "angles: min {:.2}°, mean of per-triangle minima {:.2}°",

@@ -81,8 +81,11 @@ pub struct SurfaceMesh {
     /// The output edges along the net's hard edges, as vertex pairs.
     pub hard_edges: Vec<[u32; 2]>,
     /// Largest measured chord error (model units): flat triangle to surface
-    /// at the same parameters, over all centroids and edge midpoints.
-    pub deviation: f64,
+    /// at the same parameters, over all centroids and edge midpoints. `None`
+    /// when no tolerance was set: there is nothing to enforce then, and
+    /// measuring costs about as much as meshing (snap the centroids and
+    /// midpoints to measure afterwards).
+    pub deviation: Option<f64>,
     /// The net's bounding-box diagonal, for relative figures.
     pub diagonal: f64,
 }
@@ -286,7 +289,12 @@ impl<'a> Mesher<'a> {
                 .collect();
             let fresh: Vec<(usize, EdgeCut)> = dirty_edges
                 .par_iter()
-                .map(|&e| Ok((e, cut_edge(surface, e, cuts_per_edge[e], &corners)?)))
+                .map(|&e| {
+                    Ok((
+                        e,
+                        cut_edge(surface, e, cuts_per_edge[e], &corners, tolerance.is_some())?,
+                    ))
+                })
                 .collect::<Result<_>>()?;
             for (e, cut) in fresh {
                 edge_cuts[e] = Some(cut);
@@ -349,10 +357,8 @@ impl<'a> Mesher<'a> {
                 break;
             }
             if round + 1 == MAX_ROUNDS {
-                let worst = tri_cuts
-                    .iter()
-                    .flatten()
-                    .map(|c| c.deviation)
+                let worst = (edge_cuts.iter().flatten().map(|c| c.deviation))
+                    .chain(tri_cuts.iter().flatten().map(|c| c.deviation))
                     .fold(0.0, f64::max);
                 return Err(Error::InvalidArgument(format!(
                     "tolerance {:e} not reached after {MAX_ROUNDS} rounds of refinement (chord error still {:e} of the diagonal)",
@@ -367,7 +373,14 @@ impl<'a> Mesher<'a> {
         progress(n, n);
         let edge_cuts: Vec<EdgeCut> = edge_cuts.into_iter().map(|c| c.expect("cut")).collect();
         let tri_cuts: Vec<TriangleCut> = tri_cuts.into_iter().map(|c| c.expect("cut")).collect();
-        Ok(assemble(surface, &corners, &edge_cuts, &tri_cuts, diagonal))
+        Ok(assemble(
+            surface,
+            &corners,
+            &edge_cuts,
+            &tri_cuts,
+            diagonal,
+            tolerance.is_some(),
+        ))
     }
 
     /// Refuses meshes over the triangle budget before building them.
@@ -387,7 +400,8 @@ impl<'a> Mesher<'a> {
     }
 
     /// Cuts control triangle `t`: evaluates its interior points, triangulates,
-    /// swaps, and measures the chord error of every triangle and interior edge.
+    /// swaps, and, given a tolerance, measures the chord error of every
+    /// triangle and interior edge.
     fn cut_triangle(
         &self,
         t: usize,
@@ -443,7 +457,7 @@ impl<'a> Mesher<'a> {
             (a as usize) < nb && (b as usize) < nb && b as usize == (a as usize + 1) % nb
         };
         let mut deviation: f64 = 0.0;
-        for tri in &tris {
+        for tri in tris.iter().filter(|_| tolerance.is_some()) {
             deviation = deviation.max(chord(tri, &points, deviation)?);
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
@@ -555,13 +569,14 @@ fn corner_points(surface: &Surface) -> Result<Vec<(SurfacePoint, DVec3)>> {
         .collect()
 }
 
-/// Cuts control edge `e` into `n` segments of equal parameter length and
-/// measures its chords at their midpoints.
+/// Cuts control edge `e` into `n` segments of equal parameter length and,
+/// if `measure`, measures its chords at their midpoints.
 fn cut_edge(
     surface: &Surface,
     e: usize,
     n: u32,
     corners: &[(SurfacePoint, DVec3)],
+    measure: bool,
 ) -> Result<EdgeCut> {
     let topo = surface.net().topology();
     let (t, s) = owner(topo, e);
@@ -593,7 +608,7 @@ fn cut_edge(
         }
     };
     let mut deviation: f64 = 0.0;
-    for k in 0..n as usize {
+    for k in (0..n as usize).filter(|_| measure) {
         let q = at(k as f64 + 0.5);
         let chord = 0.5 * (node(k) + node(k + 1));
         deviation = deviation.max(chord_error(&mut chart, q, chord, deviation)?);
@@ -662,6 +677,7 @@ fn assemble(
     edge_cuts: &[EdgeCut],
     tri_cuts: &[TriangleCut],
     diagonal: f64,
+    measured: bool,
 ) -> SurfaceMesh {
     let net = surface.net();
     let topo = net.topology();
@@ -733,11 +749,13 @@ fn assemble(
             hard_edges.extend(chain.windows(2).map(|w| [w[0], w[1]]));
         }
     }
-    let deviation = edge_cuts
-        .iter()
-        .map(|c| c.deviation)
-        .chain(tri_cuts.iter().map(|c| c.deviation))
-        .fold(0.0, f64::max);
+    let deviation = measured.then(|| {
+        edge_cuts
+            .iter()
+            .map(|c| c.deviation)
+            .chain(tri_cuts.iter().map(|c| c.deviation))
+            .fold(0.0, f64::max)
+    });
     SurfaceMesh {
         points,
         triangles,
