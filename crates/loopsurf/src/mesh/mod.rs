@@ -13,10 +13,11 @@
 //! chart are [`SurfaceMesh::triangle_params`]. Max–min angle swaps then
 //! improve angles inside each chart ([`swap`]).
 //!
-//! The chord error is measured, not estimated: at the centroid of every
-//! output triangle and the midpoint of every output edge, the distance from
-//! the flat triangle to the surface point at the same parameters (an upper
-//! bound of the distance to the surface there). Where it exceeds the
+//! Under a tolerance the chord error is measured, not estimated: at the
+//! centroid of every output triangle and the midpoint of every output edge,
+//! the distance from the flat triangle to the surface point at the same
+//! parameters (an upper bound of the distance to the surface there, sharpened
+//! by one projection step where it matters). Where it exceeds the
 //! tolerance, the control triangle or edge is cut finer and rebuilt.
 
 mod density;
