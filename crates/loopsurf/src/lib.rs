@@ -8,6 +8,7 @@
 //! (triangle, v, w)), with [`stream`] to ship a surface as bytes. File formats live in [`io`], built-in shapes in
 //! [`examples`].
 
+pub mod adapt;
 pub mod error;
 pub(crate) mod eval;
 pub mod examples;
@@ -23,6 +24,7 @@ pub mod stream;
 pub mod surface;
 pub mod topology;
 
+pub use adapt::{Adapter, AdaptiveMesh};
 pub use error::{Element, Error, Result};
 pub use features::{Features, VertexKind};
 pub use glam::DVec3;

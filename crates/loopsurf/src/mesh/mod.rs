@@ -23,7 +23,7 @@
 mod density;
 mod pattern;
 mod quality;
-mod swap;
+pub(crate) mod swap;
 
 pub use quality::{MeshQuality, TriangleQuality};
 
