@@ -1,6 +1,7 @@
 //! The `loopsurf` command: translates arguments into library calls and
 //! library results into text. No geometry lives here.
 
+mod cmd_adapt;
 mod cmd_eval;
 mod cmd_hard_edges;
 mod cmd_info;
@@ -30,6 +31,8 @@ enum Command {
     HardEdges(cmd_hard_edges::Args),
     /// Uniform Loop refinement; the output format follows OUT's extension.
     Refine(cmd_refine::Args),
+    /// Adaptive Loop subdivision by conical angle (seed 001) or distance to the limit surface; conforming.
+    Adapt(cmd_adapt::Args),
     /// Exact evaluation: reads `tri v w` lines on stdin, writes X Xv Xw Xvv Xvw Xww (18 numbers) per line.
     Eval(cmd_eval::Args),
     /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
@@ -84,6 +87,7 @@ fn main() -> ExitCode {
         Command::Info(args) => cmd_info::run(args),
         Command::HardEdges(args) => cmd_hard_edges::run(args),
         Command::Refine(args) => cmd_refine::run(args),
+        Command::Adapt(args) => cmd_adapt::run(args),
         Command::Eval(args) => cmd_eval::run(args),
         Command::Interpolate(args) => cmd_interpolate::run(args),
         Command::Snap(args) => cmd_snap::run(args),

@@ -437,3 +437,81 @@ fn mesh_rejects_bad_options_with_one_line() {
         "x.unknown",
     );
 }
+
+/// `loopsurf adapt`: the summary, a .vtu with parameters and dead flags, and
+/// the seed's Table 1 with `--report`.
+#[test]
+fn adapt_the_torus_writes_its_summary_and_report() {
+    let vtu = scratch("torus-adapt.vtu");
+    let out = loopsurf(&[
+        "adapt",
+        "--example",
+        "torus",
+        "--angle",
+        "11",
+        "--levels",
+        "3",
+        "-o",
+        vtu.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let summary = text(&out.stdout);
+    for needle in [
+        "level 3: ",
+        "% fewer",
+        "triangles/s",
+        "min angle",
+        "max distance of the vertices to the limit surface",
+    ] {
+        assert!(
+            summary.contains(needle),
+            "'{needle}' missing from {summary}"
+        );
+    }
+    let file = std::fs::read_to_string(&vtu).unwrap();
+    for name in ["\"tri\"", "\"v\"", "\"w\"", "\"dead\""] {
+        assert!(file.contains(name), "{name} missing from the .vtu");
+    }
+    let out = loopsurf(&["adapt", "--example", "torus", "--levels", "2", "--report"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    for row in [
+        "| uniform Loop |",
+        "| CA = 7° |",
+        "| CA = 11° |",
+        "| CA = 22° |",
+    ] {
+        assert!(report.contains(row), "'{row}' missing from {report}");
+    }
+}
+
+#[test]
+fn adapt_rejects_bad_options_with_one_line() {
+    let o = scratch("never-adapt.obj");
+    let o = o.to_str().unwrap();
+    let adapt = |extra: &[&str]| {
+        let mut args = vec!["adapt", "--example", "cube", "-o", o];
+        args.extend_from_slice(extra);
+        loopsurf(&args)
+    };
+    assert_clean_failure(&adapt(&["--levels", "2"]), "no criterion");
+    assert_clean_failure(&adapt(&["--angle", "-5", "--levels", "2"]), "angle -5");
+    assert_clean_failure(&adapt(&["--angle", "5", "--levels", "11"]), "levels 11");
+    assert_clean_failure(&adapt(&["--angle", "5"]), "--levels");
+    assert_clean_failure(
+        &adapt(&["--tolerance", "2", "--levels", "2"]),
+        "tolerance 2",
+    );
+    assert_clean_failure(
+        &loopsurf(&[
+            "adapt",
+            "--example",
+            "cube",
+            "--angle",
+            "5",
+            "--levels",
+            "1",
+        ]),
+        "--output",
+    );
+}

@@ -490,8 +490,28 @@ fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
         let [a, b] = sorted(c[slot % 3], c[(slot + 1) % 3]);
         (a as u64) << 32 | b as u64
     };
-    let mut order: Vec<(u64, u32)> = (0..nslots).map(|s| (key(s), s as u32)).collect();
-    order.sort_unstable();
+    // Sorted by key: a counting sort on the smaller vertex, then each
+    // bucket (a vertex's few edges) sorted on its own. The same order as a
+    // full sort, in linear time; this is most of building a topology.
+    let nverts = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+    let mut start = vec![0u32; nverts + 1];
+    for s in 0..nslots {
+        start[(key(s) >> 32) as usize + 1] += 1;
+    }
+    for v in 0..nverts {
+        start[v + 1] += start[v];
+    }
+    let mut order: Vec<(u64, u32)> = vec![(0, 0); nslots];
+    let mut next = start.clone();
+    for s in 0..nslots {
+        let k = key(s);
+        let at = &mut next[(k >> 32) as usize];
+        order[*at as usize] = (k, s as u32);
+        *at += 1;
+    }
+    for v in 0..nverts {
+        order[start[v] as usize..start[v + 1] as usize].sort_unstable();
+    }
     // Group runs of equal keys; give each group the id of its first appearance.
     let mut group_of_slot = vec![0u32; nslots];
     let mut groups: Vec<(usize, usize)> = Vec::new(); // (start, len) in `order`

@@ -29,21 +29,25 @@ fn angle(a: DVec3, b: DVec3) -> f64 {
     a.cross(b).length().atan2(a.dot(b))
 }
 
-/// The conical angle of every vertex, degrees.
-pub(crate) fn conical_angles(net: &ControlNet) -> Vec<f64> {
+/// The conical angle of every vertex but the `skip`ped ones (0 for
+/// those), degrees.
+pub(crate) fn conical_angles(net: &ControlNet, skip: &[bool]) -> Vec<f64> {
     let (topo, features, points) = (net.topology(), net.features(), net.points());
     let normals: Vec<DVec3> = topo
         .triangles()
-        .iter()
+        .par_iter()
         .map(|t| {
             let [a, b, c] = t.map(|i| points[i as usize]);
-            (b - a).cross(c - a)
+            (b - a).cross(c - a).normalize_or_zero()
         })
         .collect();
     let kinds = features.vertex_kinds(topo);
     (0..topo.num_vertices())
         .into_par_iter()
         .map(|v| {
+            if skip[v] {
+                return 0.0;
+            }
             let fan = topo.fan(v);
             // Sector of each fan triangle: union over soft edges at v.
             let mut sector: Vec<usize> = (0..fan.len()).collect();
@@ -72,14 +76,16 @@ pub(crate) fn conical_angles(net: &ControlNet) -> Vec<f64> {
                     }
                 }
             }
-            let mut ca: f64 = 0.0;
+            // The widest pair: the smallest cosine between unit normals.
+            let mut cos: f64 = 1.0;
             for i in 0..fan.len() {
                 for j in i + 1..fan.len() {
                     if root(&mut sector, i) == root(&mut sector, j) {
-                        ca = ca.max(angle(normals[fan[i] as usize], normals[fan[j] as usize]));
+                        cos = cos.min(normals[fan[i] as usize].dot(normals[fan[j] as usize]));
                     }
                 }
             }
+            let mut ca = cos.clamp(-1.0, 1.0).acos();
             if kinds[v] == VertexKind::Crease {
                 if let [a, b] = features.hard_neighbours(topo, v)[..] {
                     let p = points[v];

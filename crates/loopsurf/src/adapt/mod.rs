@@ -15,7 +15,6 @@ mod split;
 
 use crate::error::{Error, Result};
 use crate::features::Features;
-use crate::mesh::swap::max_cosine;
 use crate::net::ControlNet;
 use crate::refine::SurfacePoint;
 use crate::surface::Surface;
@@ -81,6 +80,8 @@ pub(crate) struct Parts {
     pub points: Vec<DVec3>,
     pub tris: Vec<[u32; 3]>,
     pub charts: Vec<FaceChart>,
+    /// Per triangle: made by this level's splits (not a dead one kept).
+    pub fresh: Vec<bool>,
     pub dead: Vec<bool>,
     /// Interior hard edges (boundary edges are hard anyway).
     pub hard: Vec<[u32; 2]>,
@@ -208,7 +209,7 @@ impl<'a> Adapter<'a> {
                 )));
             }
             let mut flat: Vec<bool> = match self.angle {
-                Some(a) => classify::conical_angles(&level.net)
+                Some(a) => classify::conical_angles(&level.net, &level.dead)
                     .into_iter()
                     .map(|ca| ca < a)
                     .collect(),
@@ -277,18 +278,7 @@ fn count(level: &Level) -> LevelCount {
 impl AdaptiveMesh {
     /// The smallest angle of any triangle, degrees.
     pub fn min_angle(&self) -> f64 {
-        let points = self.net.points();
-        self.net
-            .triangles()
-            .par_iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| points[i as usize]);
-                max_cosine(a, b, c)
-            })
-            .reduce(|| -1.0, f64::max)
-            .clamp(-1.0, 1.0)
-            .acos()
-            .to_degrees()
+        crate::mesh::min_angle(self.net.points(), self.net.triangles())
     }
 
     /// Every vertex moved to the limit surface at its parameters (`surface`

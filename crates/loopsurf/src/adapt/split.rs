@@ -45,9 +45,11 @@ pub(crate) fn subdivide(level: &Level, dead: &[bool]) -> Parts {
 
     let mut tris = Vec::with_capacity(4 * topo.num_triangles());
     let mut charts = Vec::with_capacity(4 * topo.num_triangles());
+    let mut fresh = Vec::with_capacity(4 * topo.num_triangles());
     let mut push = |t: [u32; 3], q: [DVec2; 3], chart: &FaceChart| {
         tris.push(t);
         charts.push(FaceChart { tri: chart.tri, q });
+        fresh.push(q != chart.q);
     };
     for (t, (&c, chart)) in topo.triangles().iter().zip(&level.charts).enumerate() {
         let m = topo.triangle_edges()[t].map(|e| edge_vertex[e as usize]);
@@ -106,6 +108,7 @@ pub(crate) fn subdivide(level: &Level, dead: &[bool]) -> Parts {
         points,
         tris,
         charts,
+        fresh,
         dead: next_dead,
         hard,
         corners,

@@ -25,7 +25,7 @@ mod pattern;
 mod quality;
 pub(crate) mod swap;
 
-pub use quality::{MeshQuality, TriangleQuality};
+pub use quality::{min_angle, MeshQuality, TriangleQuality};
 
 use crate::error::{Error, Result};
 use crate::refine::SurfacePoint;

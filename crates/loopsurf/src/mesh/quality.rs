@@ -44,6 +44,22 @@ fn triangle_quality(p: [DVec3; 3]) -> TriangleQuality {
     TriangleQuality { min_angle, shape }
 }
 
+/// The smallest angle of any triangle of `tris` over `points`, degrees.
+pub fn min_angle(points: &[DVec3], tris: &[[u32; 3]]) -> f64 {
+    tris.par_iter()
+        .map(|t| {
+            max_cosine(
+                points[t[0] as usize],
+                points[t[1] as usize],
+                points[t[2] as usize],
+            )
+        })
+        .reduce(|| -1.0, f64::max)
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
+}
+
 impl SurfaceMesh {
     /// Quality of every triangle, in triangle order.
     pub fn triangle_quality(&self) -> Vec<TriangleQuality> {
