@@ -112,14 +112,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         write_output(path, &surface, &run.mesh, args.limit)?;
     }
     crate::write_stdout(|out| {
-        writeln!(
-            out,
-            "input: {} ({} vertices, {} triangles, {} hard edges)",
-            args.input.name(),
-            net.points().len(),
-            net.triangles().len(),
-            net.features().num_hard_edges()
-        )?;
+        writeln!(out, "{}", args.input.describe(&net))?;
         let input_angle = loopsurf::mesh::min_angle(net.points(), net.triangles());
         if let Some(run) = &main {
             summary(out, &net, run, input_angle)?;

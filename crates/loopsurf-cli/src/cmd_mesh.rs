@@ -95,14 +95,7 @@ pub fn run(args: Args) -> Result<(), Error> {
     let quality = mesh.quality();
     let relative = |d: f64| d / mesh.diagonal;
     crate::write_stdout(|out| {
-        writeln!(
-            out,
-            "input: {} ({} vertices, {} triangles, {} hard edges)",
-            args.input.name(),
-            net.points().len(),
-            net.triangles().len(),
-            net.features().num_hard_edges()
-        )?;
+        writeln!(out, "{}", args.input.describe(&net))?;
         writeln!(
             out,
             "output: {} vertices, {} triangles, {} hard edges in {seconds:.3} s ({:.2}M triangles/s)",

@@ -38,6 +38,17 @@ impl Input {
         }
     }
 
+    /// The line `mesh` and `adapt` open their summaries with.
+    pub fn describe(&self, net: &ControlNet) -> String {
+        format!(
+            "input: {} ({} vertices, {} triangles, {} hard edges)",
+            self.name(),
+            net.points().len(),
+            net.triangles().len(),
+            net.features().num_hard_edges()
+        )
+    }
+
     /// Reads or builds the net and applies the feature flags.
     pub fn load(&self) -> Result<ControlNet, Error> {
         let mut net = match (&self.mesh, &self.example) {

@@ -5,18 +5,9 @@
 
 mod common;
 
-use common::cgal_mesh;
+use common::{cgal_mesh, example};
 use loopsurf::{AdaptiveMesh, ControlNet, Surface, SurfacePoint};
 use std::collections::{HashMap, HashSet};
-
-fn example(name: &str, angle: Option<f64>) -> ControlNet {
-    let ex = loopsurf::examples::by_name(name).unwrap();
-    let mut net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
-    if let Some(a) = angle {
-        net.tag_by_angle(a).unwrap();
-    }
-    net
-}
 
 fn cgal(name: &str) -> Option<ControlNet> {
     Some(ControlNet::read(cgal_mesh(name)?).unwrap())

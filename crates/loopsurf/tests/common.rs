@@ -32,3 +32,13 @@ pub fn bicone(n: usize, open: bool) -> ControlNet {
     let ex = loopsurf::examples::bicone(n, open);
     ControlNet::from_arrays(ex.points, &ex.tris).unwrap()
 }
+
+/// A built-in example as a control net, hard edges tagged above `angle`.
+pub fn example(name: &str, angle: Option<f64>) -> ControlNet {
+    let ex = loopsurf::examples::by_name(name).unwrap();
+    let mut net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+    if let Some(a) = angle {
+        net.tag_by_angle(a).unwrap();
+    }
+    net
+}

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::cgal_mesh;
+use common::{cgal_mesh, example};
 use loopsurf::{ControlNet, DVec3, Snap, Surface, SurfaceMode};
 
 /// Deterministic pseudo-random numbers in [0, 1).
@@ -164,15 +164,6 @@ fn check_mesh(name: &str, net: &ControlNet, queries: usize) {
             "{what}: snap_near"
         );
     }
-}
-
-fn example(name: &str, angle: Option<f64>) -> ControlNet {
-    let e = loopsurf::examples::by_name(name).unwrap();
-    let mut net = ControlNet::from_arrays(e.points, &e.tris).unwrap();
-    if let Some(a) = angle {
-        net.tag_by_angle(a).unwrap();
-    }
-    net
 }
 
 #[test]
