@@ -170,6 +170,15 @@ module loopsurf
             ! variable receives the array.
             type(c_ptr), value :: tri_chart, tri_vw
         end function
+        integer(c_int) function ls_adapt(surface, angle, tolerance, levels, to_limit, &
+                nverts, xyz, ntris, tris, vertex_tri, vertex_vw) bind(C, name="ls_adapt")
+            import :: c_int, c_double, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), value :: angle, tolerance
+            integer(c_int), value :: levels, to_limit
+            integer(c_size_t), intent(out) :: nverts, ntris
+            type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
+        end function
         subroutine ls_free_array(array) bind(C, name="ls_free_array")
             import :: c_ptr
             type(c_ptr), value :: array

@@ -84,6 +84,15 @@ program test_loopsurf
     call ls_free_array(rtris)
     call ls_free_array(mtri)
     call ls_free_array(mvw)
+    ! Adaptive subdivision at angle 0 is uniform: 8 * 4**2 triangles, closed.
+    call check(ls_adapt(surf, 0d0, 0d0, 2_c_int, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw) == LS_OK, "adapt")
+    call check(nt == 128 .and. nv == 66, "adapt counts")
+    call ls_free_array(rxyz)
+    call ls_free_array(rtris)
+    call ls_free_array(mtri)
+    call ls_free_array(mvw)
+    call check(ls_adapt(surf, 5d0, 0d0, 11_c_int, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw) &
+        == LS_ERR_INVALID_ARGUMENT, "adapt levels 11")
     call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
     call ls_free_array(rxyz)
 

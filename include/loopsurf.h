@@ -80,6 +80,33 @@ extern "C" {
 // Writes the library version (each pointer may be NULL).
 void ls_version(int *major, int *minor, int *patch);
 
+// Adaptive Loop subdivision of the surface's control net, `levels` times
+// (0 to 10; see `loopsurf adapt`): refinement stops where the conical
+// angle of the face normals at every neighbour of a vertex is below
+// `angle` degrees (0 is uniform subdivision; negative: no angle
+// criterion), and/or where the mesh is within `tolerance` × the
+// bounding-box diagonal of the limit surface (0: none). At least one
+// criterion is needed. The result is conforming and keeps hard edges.
+// With `to_limit` nonzero every vertex is moved onto the limit surface.
+//
+// Writes `nverts`, `xyz` (3 × nverts), `ntris`, `tris` (3 × ntris, 0-based,
+// counter-clockwise like the net) and, per vertex, `vertex_tri` (nverts)
+// and `vertex_vw` (2 × nverts): the control triangle and exact dyadic
+// (v, w) the vertex stands for, so `ls_evaluate(vertex_tri[i], vw[2i],
+// vw[2i+1])` is its limit position. Release every array with
+// `ls_free_array`.
+int ls_adapt(const ls_surface *surface,
+             double angle,
+             double tolerance,
+             int levels,
+             int to_limit,
+             size_t *nverts,
+             double **xyz,
+             size_t *ntris,
+             int32_t **tris,
+             int32_t **vertex_tri,
+             double **vertex_vw);
+
 // Refines the surface's control net `levels` times (0 to 12) by uniform
 // Loop subdivision with its hard edges and corners. With `to_limit`
 // nonzero, every vertex is moved to its exact limit position. Writes the

@@ -393,6 +393,55 @@ static void test_mesh(void) {
     ls_surface_free(surface);
 }
 
+static void test_adapt(void) {
+    ls_surface* surface = octahedron(NULL);
+    size_t nv = 0, nt = 0;
+    double *xyz = NULL, *vw = NULL;
+    int32_t *tris = NULL, *vtri = NULL;
+    double r[18];
+    /* Angle 0 is uniform Loop: 8 * 4^2 triangles, closed. */
+    EXPECT(ls_adapt(surface, 0.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
+    CHECK(nt == 128 && nv - (3 * nt) / 2 + nt == 2);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    /* Adaptive, pushed to the limit: fewer triangles, still closed, every
+       vertex the surface at its parameters. */
+    EXPECT(ls_adapt(surface, 20.0, 0.0, 4, 1, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
+    CHECK(nt < 8 * 256 && nt > 8 && nv - (3 * nt) / 2 + nt == 2);
+    for (size_t i = 0; i < nv; i++) {
+        EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
+        for (int k = 0; k < 3; k++) CHECK(r[k] == xyz[3 * i + k]);
+    }
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    /* Tolerance only. */
+    EXPECT(ls_adapt(surface, -1.0, 1e-2, 5, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
+    CHECK(nt < 8 * 1024 && nv - (3 * nt) / 2 + nt == 2);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+
+    xyz = (double*)&SENTINEL;
+    EXPECT(ls_adapt(NULL, 5.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_NULL_POINTER);
+    EXPECT(ls_adapt(surface, 5.0, 0.0, 2, 0, &nv, &xyz, &nt, NULL, &vtri, &vw), LS_ERR_NULL_POINTER);
+    EXPECT(ls_adapt(surface, 5.0, 0.0, 11, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "ls_adapt") != NULL);
+    CHECK(strstr(ls_last_error(), "levels 11") != NULL);
+    EXPECT(ls_adapt(surface, 5.0, 0.0, -1, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_adapt(surface, 200.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_adapt(surface, -1.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "no criterion") != NULL);
+    EXPECT(ls_adapt(surface, -1.0, 2.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_adapt(surface, NAN, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    CHECK(xyz == (double*)&SENTINEL); /* outputs untouched on failure */
+    ls_surface_free(surface);
+}
+
 static void test_streams(void) {
     ls_net* net = NULL;
     ls_surface* surface = NULL;
@@ -452,6 +501,7 @@ int main(int argc, char** argv) {
     test_queries();
     test_refine();
     test_mesh();
+    test_adapt();
     test_streams();
     if (failures) {
         fprintf(stderr, "%d checks failed\n", failures);

@@ -51,8 +51,44 @@ impl Drop for Blocks {
 
 const _: () = assert!(std::mem::size_of::<loopsurf::DVec3>() == 3 * std::mem::size_of::<f64>());
 
+/// A mesh on the surface as caller-owned arrays: `xyz` (3 × nverts), `tris`
+/// (3 × ntris, 0-based), and per vertex its control triangle and (v, w).
+pub(crate) struct MeshArrays {
+    pub xyz: *mut f64,
+    pub tris: *mut i32,
+    pub vertex_tri: *mut i32,
+    pub vertex_vw: *mut f64,
+}
+
+impl MeshArrays {
+    /// Copies a mesh into `blocks`; fails when it does not fit 32-bit indices.
+    pub(crate) unsafe fn copy(
+        blocks: &mut Blocks,
+        points: &[loopsurf::DVec3],
+        triangles: &[[u32; 3]],
+        params: &[loopsurf::SurfacePoint],
+    ) -> Result<MeshArrays, Fail> {
+        if points.len() > i32::MAX as usize {
+            return Err(Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("{} vertices do not fit 32-bit indices", points.len()),
+            ));
+        }
+        let coords: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+        let indices: Vec<i32> = triangles.iter().flatten().map(|&i| i as i32).collect();
+        let tri: Vec<i32> = params.iter().map(|p| p.tri as i32).collect();
+        let vw: Vec<f64> = params.iter().flat_map(|p| [p.v, p.w]).collect();
+        Ok(MeshArrays {
+            xyz: blocks.copy(&coords)?,
+            tris: blocks.copy(&indices)?,
+            vertex_tri: blocks.copy(&tri)?,
+            vertex_vw: blocks.copy(&vw)?,
+        })
+    }
+}
+
 /// A level count from C: 0 or more (the library caps it).
-fn levels_arg(levels: c_int) -> Result<u32, Fail> {
+pub(crate) fn levels_arg(levels: c_int) -> Result<u32, Fail> {
     u32::try_from(levels).map_err(|_| {
         Fail::new(
             LS_ERR_INVALID_ARGUMENT,

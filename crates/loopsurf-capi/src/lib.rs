@@ -16,6 +16,7 @@
 // exported function documents its pointer contract in the header instead.
 #![allow(clippy::missing_safety_doc)]
 
+mod adapt;
 mod buffers;
 mod mesh;
 mod net;

@@ -1,6 +1,6 @@
 //! `ls_mesh`: the surface mesher through the C ABI.
 
-use crate::buffers::Blocks;
+use crate::buffers::{Blocks, MeshArrays};
 use crate::ls_surface;
 use crate::status::{input, output, run, Fail, LS_ERR_INVALID_ARGUMENT};
 use loopsurf::{Density, Mesher};
@@ -72,26 +72,15 @@ pub unsafe extern "C" fn ls_mesh(
             mesher = mesher.tolerance(tolerance);
         }
         let mesh = mesher.run()?;
-        if mesh.points.len() > i32::MAX as usize {
-            return bad(format!(
-                "{} vertices do not fit 32-bit indices",
-                mesh.points.len()
-            ));
-        }
-        let coords: Vec<f64> = mesh.points.iter().flat_map(|p| p.to_array()).collect();
-        let indices: Vec<i32> = mesh.triangles.iter().flatten().map(|&i| i as i32).collect();
-        let ptri: Vec<i32> = mesh.params.iter().map(|p| p.tri as i32).collect();
-        let pvw: Vec<f64> = mesh.params.iter().flat_map(|p| [p.v, p.w]).collect();
         let mut blocks = Blocks::default();
-        let (a, b) = (blocks.copy(&coords)?, blocks.copy(&indices)?);
-        let (c, d) = (blocks.copy(&ptri)?, blocks.copy(&pvw)?);
-        let e = if tri_chart.is_null() {
+        let arrays = MeshArrays::copy(&mut blocks, &mesh.points, &mesh.triangles, &mesh.params)?;
+        let charts_out = if tri_chart.is_null() {
             std::ptr::null_mut()
         } else {
             let chart: Vec<i32> = mesh.charts.iter().map(|&c| c as i32).collect();
             blocks.copy(&chart)?
         };
-        let f = if tri_vw.is_null() {
+        let corners_out = if tri_vw.is_null() {
             std::ptr::null_mut()
         } else {
             let net = surface.net();
@@ -106,16 +95,16 @@ pub unsafe extern "C" fn ls_mesh(
         };
         blocks.hand_over();
         *outs.0 = mesh.points.len();
-        *outs.1 = a;
+        *outs.1 = arrays.xyz;
         *outs.2 = mesh.triangles.len();
-        *outs.3 = b;
-        *outs.4 = c;
-        *outs.5 = d;
+        *outs.3 = arrays.tris;
+        *outs.4 = arrays.vertex_tri;
+        *outs.5 = arrays.vertex_vw;
         if !tri_chart.is_null() {
-            *tri_chart = e;
+            *tri_chart = charts_out;
         }
         if !tri_vw.is_null() {
-            *tri_vw = f;
+            *tri_vw = corners_out;
         }
         Ok(())
     })
