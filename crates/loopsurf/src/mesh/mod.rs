@@ -499,13 +499,21 @@ fn chord_error(chart: &mut Chart, q: DVec2, p: DVec3, enough: f64) -> Result<f64
     }
     let (r, s) = (e.xv.dot(d), e.xw.dot(d));
     let step = DVec2::new(c * r - b * s, a * s - b * r) / det;
-    let mut moved = (q + step).max(DVec2::ZERO);
-    let excess = moved.x + moved.y - 1.0;
-    if excess > 0.0 {
-        moved = (moved - DVec2::splat(excess / 2.0)).max(DVec2::ZERO);
-    }
-    let projected = chart.point(moved.x, moved.y.min(1.0 - moved.x))?;
+    let moved = nearest_in_triangle(q + step);
+    let projected = chart.point(moved.x, moved.y)?;
     Ok(projected.distance(p).min(plain))
+}
+
+/// The nearest point of the parameter triangle (v, w ≥ 0, v + w ≤ 1) to `q`:
+/// beyond the long side, its projection onto that side (clamped to its
+/// ends); elsewhere, each coordinate clamped to [0, 1].
+fn nearest_in_triangle(q: DVec2) -> DVec2 {
+    if q.x + q.y > 1.0 {
+        let t = ((q.x - q.y + 1.0) / 2.0).clamp(0.0, 1.0);
+        DVec2::new(t, 1.0 - t)
+    } else {
+        q.clamp(DVec2::ZERO, DVec2::ONE)
+    }
 }
 
 /// The level that should bring a measured chord error `error` down to
@@ -802,4 +810,36 @@ pub fn reparameterize(net: &crate::ControlNet, p: SurfacePoint, into: u32) -> Op
         }
     }
     Some((out[1], out[2]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::nearest_in_triangle;
+    use glam::DVec2;
+
+    /// Every projection lands in the triangle and is no farther than any
+    /// point of a fine grid over it; inside points stay put.
+    #[test]
+    fn nearest_in_triangle_is_the_projection() {
+        let grid: Vec<DVec2> = (0..=40)
+            .flat_map(|i| (0..=40 - i).map(move |j| DVec2::new(i as f64, j as f64) / 40.0))
+            .collect();
+        for i in -12..=24 {
+            for j in -12..=24 {
+                let q = DVec2::new(i as f64, j as f64) / 8.0 + DVec2::new(0.013, -0.007);
+                let m = nearest_in_triangle(q);
+                assert!(
+                    m.x >= 0.0 && m.y >= 0.0 && m.x + m.y <= 1.0 + 1e-15,
+                    "{q} -> {m}"
+                );
+                let best = grid
+                    .iter()
+                    .map(|g| g.distance(q))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(m.distance(q) <= best + 1e-12, "{q} -> {m}");
+            }
+        }
+        let inside = DVec2::new(0.25, 0.5);
+        assert_eq!(nearest_in_triangle(inside), inside);
+    }
 }
