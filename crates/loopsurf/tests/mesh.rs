@@ -350,3 +350,24 @@ fn bad_options_are_clear_errors() {
         );
     }
 }
+
+/// A CAD-like net of creases and corners up to valence 34 (CGAL anchor):
+/// next to such vertices the parameterisation drifts far along the
+/// surface, and a chord error that counted the drift (one projection step
+/// instead of a converged one) asked for 2.3 million triangles at 1e-3.
+#[test]
+fn crease_and_corner_nets_stay_within_a_sane_count() {
+    let Some(net) = cgal("anchor.off", Some(30.0)) else { return };
+    let surface = Surface::new(&net).unwrap();
+    let mesh = Mesher::new(&surface)
+        .tolerance(1e-3)
+        .adapt_curvature(true)
+        .run()
+        .unwrap();
+    assert!(mesh.deviation.unwrap() <= 1e-3 * mesh.diagonal);
+    assert!(
+        mesh.triangles.len() < 150_000,
+        "{} triangles for 1050 control triangles",
+        mesh.triangles.len()
+    );
+}

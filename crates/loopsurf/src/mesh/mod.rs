@@ -41,6 +41,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// fraction of the bounding-box diagonal.
 pub const DEFAULT_ADAPT_TOLERANCE: f64 = 1e-3;
 
+/// Newton steps of the chord error's projection onto the surface, at most.
+const PROJECTION_STEPS: usize = 4;
+
 /// Rounds of measure-and-refine before the tolerance is declared unreachable.
 const MAX_ROUNDS: usize = 16;
 
@@ -486,22 +489,28 @@ impl<'a> Mesher<'a> {
 /// drift, which is no error at all and would triple the triangle count;
 /// the projected distance is within round-off of what snap measures.
 fn chord_error(chart: &mut Chart, q: DVec2, p: DVec3, enough: f64) -> Result<f64> {
-    let plain = chart.point(q.x, q.y)?.distance(p);
-    if plain <= enough {
-        return Ok(plain);
+    let mut best = chart.point(q.x, q.y)?.distance(p);
+    let mut q = q;
+    for _ in 0..PROJECTION_STEPS {
+        if best <= enough {
+            break;
+        }
+        let e = chart.eval(q.x, q.y)?;
+        let d = p - e.x;
+        let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
+        let det = a * c - b * b;
+        if e.at_special_vertex || det.is_nan() || det <= 1e-24 * a * c {
+            break;
+        }
+        let (r, s) = (e.xv.dot(d), e.xw.dot(d));
+        let moved = nearest_in_triangle(q + DVec2::new(c * r - b * s, a * s - b * r) / det);
+        let distance = chart.point(moved.x, moved.y)?.distance(p);
+        if distance >= best {
+            break;
+        }
+        (best, q) = (distance, moved);
     }
-    let e = chart.eval(q.x, q.y)?;
-    let d = p - e.x;
-    let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
-    let det = a * c - b * b;
-    if e.at_special_vertex || det.is_nan() || det <= 1e-24 * a * c {
-        return Ok(plain);
-    }
-    let (r, s) = (e.xv.dot(d), e.xw.dot(d));
-    let step = DVec2::new(c * r - b * s, a * s - b * r) / det;
-    let moved = nearest_in_triangle(q + step);
-    let projected = chart.point(moved.x, moved.y)?;
-    Ok(projected.distance(p).min(plain))
+    Ok(best)
 }
 
 /// The nearest point of the parameter triangle (v, w ≥ 0, v + w ≤ 1) to `q`:
@@ -530,9 +539,11 @@ fn finer(level: u32, error: f64, tolerance: f64, last: &mut Option<(u32, f64)>) 
         _ => 2.0,
     };
     *last = Some((level, error));
-    (level + 1).max(density::level(
-        level as f64 * (error / tolerance).powf(1.0 / rate) * 1.05,
-    ))
+    // A rate measured between two levels can be pessimistic (the worst
+    // point moves): at most four times the level per round, so one bad
+    // estimate cannot blow up the count.
+    let wanted = level as f64 * (error / tolerance).powf(1.0 / rate) * 1.05;
+    (level + 1).max(density::level(wanted.min(4.0 * level as f64)))
 }
 
 /// The first triangle of edge `e` and the side of it the edge is.
