@@ -357,7 +357,9 @@ fn bad_options_are_clear_errors() {
 /// instead of a converged one) asked for 2.3 million triangles at 1e-3.
 #[test]
 fn crease_and_corner_nets_stay_within_a_sane_count() {
-    let Some(net) = cgal("anchor.off", Some(30.0)) else { return };
+    let Some(net) = cgal("anchor.off", Some(30.0)) else {
+        return;
+    };
     let surface = Surface::new(&net).unwrap();
     let mesh = Mesher::new(&surface)
         .tolerance(1e-3)
