@@ -107,29 +107,47 @@ pub(crate) fn surface_errors(
     charts: &[FaceChart],
     surface: &Surface,
 ) -> Result<Vec<f64>> {
-    let (tris, points) = (net.triangles(), net.points());
-    let per_face: Vec<[f64; 3]> = tris
-        .par_iter()
-        .zip(charts)
-        .map(|(tri, chart)| {
-            let at = |q: glam::DVec2| surface.point(chart.tri as usize, q.x, q.y);
-            let mut err = [0.0f64; 3];
-            for k in 0..3 {
-                let (a, b) = (tri[k] as usize, tri[(k + 1) % 3] as usize);
-                let own = points[a].distance(at(chart.q[k])?);
-                let mid = (0.5 * (points[a] + points[b]))
-                    .distance(at(0.5 * (chart.q[k] + chart.q[(k + 1) % 3]))?);
-                err[k] = err[k].max(own).max(mid);
-                err[(k + 1) % 3] = err[(k + 1) % 3].max(mid);
+    let (topo, tris, points) = (net.topology(), net.triangles(), net.points());
+    // The surface at corner k of triangle t, or at the midpoint of its side k.
+    let at = |t: usize, k: usize, mid: bool| {
+        let (chart, q) = (charts[t], charts[t].q);
+        let p = if mid {
+            0.5 * (q[k] + q[(k + 1) % 3])
+        } else {
+            q[k]
+        };
+        surface.point(chart.tri as usize, p.x, p.y)
+    };
+    // Each vertex once, from the first triangle of its fan.
+    let mut out: Vec<f64> = (0..points.len())
+        .into_par_iter()
+        .map(|v| match topo.fan(v).first() {
+            None => Ok(0.0),
+            Some(&t) => {
+                let k = tris[t as usize]
+                    .iter()
+                    .position(|&c| c as usize == v)
+                    .expect("in its fan");
+                Ok(points[v].distance(at(t as usize, k, false)?))
             }
-            Ok(err)
         })
         .collect::<Result<_>>()?;
-    let mut out = vec![0.0f64; points.len()];
-    for (tri, err) in tris.iter().zip(&per_face) {
-        for k in 0..3 {
-            let v = tri[k] as usize;
-            out[v] = out[v].max(err[k]);
+    // Each edge once, from its first triangle.
+    let edges: Vec<f64> = (0..topo.num_edges())
+        .into_par_iter()
+        .map(|e| {
+            let t = topo.edge_triangles()[e][0] as usize;
+            let k = topo.triangle_edges()[t]
+                .iter()
+                .position(|&x| x as usize == e)
+                .expect("its edge");
+            let [a, b] = topo.edges()[e].map(|v| points[v as usize]);
+            Ok((0.5 * (a + b)).distance(at(t, k, true)?))
+        })
+        .collect::<Result<_>>()?;
+    for (&[a, b], &err) in topo.edges().iter().zip(&edges) {
+        for v in [a, b] {
+            out[v as usize] = out[v as usize].max(err);
         }
     }
     Ok(out)
