@@ -10,7 +10,7 @@
 //! to the edge, so minima on boundaries, hard edges and corners are found as
 //! exactly as interior ones.
 
-use crate::surface::{Evaluation, Surface};
+use crate::surface::{Chart, Evaluation, Surface};
 use glam::{DVec2, DVec3};
 
 /// A point of the surface with its parameters and distance to the query.
@@ -36,74 +36,187 @@ const STEP_TOLERANCE: f64 = 1e-15;
 const CONVERGED_STEP: f64 = 1e-7;
 const MAX_HALVINGS: usize = 30;
 
-/// The three constraints of the parameter triangle as n · (v, w) ≥ c,
-/// indexed by the corner they are opposite to.
-const CONSTRAINTS: [(DVec2, f64); 3] = [
-    (DVec2::new(-1.0, -1.0), -1.0), // v + w ≤ 1: the edge c1–c2
-    (DVec2::new(0.0, 1.0), 0.0),    // w ≥ 0: the edge c0–c1
-    (DVec2::new(1.0, 0.0), 0.0),    // v ≥ 0: the edge c2–c0
-];
+/// The part of a triangle's parameter domain a solve stays in: the whole
+/// triangle, or one cell of it. One constraint n · (v, w) ≥ c per side,
+/// side i running from corner i to corner i + 1 (for the whole triangle,
+/// its local edge i).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Region {
+    corners: [DVec2; 3],
+    sides: [(DVec2, f64); 3],
+}
 
-/// Local edge index (edge i joins corners i and i + 1) of constraint k.
-fn edge_of(k: usize) -> usize {
-    [1, 0, 2][k]
+impl Region {
+    pub(crate) const WHOLE: Region = Region {
+        corners: CORNERS,
+        sides: [
+            (DVec2::new(0.0, 1.0), 0.0),    // w ≥ 0
+            (DVec2::new(-1.0, -1.0), -1.0), // v + w ≤ 1
+            (DVec2::new(1.0, 0.0), 0.0),    // v ≥ 0
+        ],
+    };
+
+    /// The sub-triangle with these corners, counter-clockwise.
+    pub(crate) fn new(corners: [DVec2; 3]) -> Region {
+        let sides = [0, 1, 2].map(|i| {
+            let d = corners[(i + 1) % 3] - corners[i];
+            let n = DVec2::new(-d.y, d.x);
+            (n, n.dot(corners[i]))
+        });
+        Region { corners, sides }
+    }
+
+    /// Whether `uv` rests on side k (to round-off).
+    fn on_side(&self, k: usize, uv: DVec2) -> bool {
+        let (n, c) = self.sides[k];
+        n.dot(uv) - c <= 1e-15
+    }
+
+    /// The nearest point of the region (round-off repair).
+    fn clamp(&self, uv: DVec2) -> DVec2 {
+        if self.corners == CORNERS {
+            let (v, w) = (uv.x.max(0.0), uv.y.max(0.0));
+            let excess = (v + w - 1.0).max(0.0);
+            return DVec2::new((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0));
+        }
+        let [a, b, c] = self.corners.map(|q| q.extend(0.0));
+        let q = super::cell::closest_in_triangle(uv.extend(0.0), a, b, c);
+        let x = a + q.x * (b - a) + q.y * (c - a);
+        DVec2::new(x.x, x.y)
+    }
 }
 
 /// Evaluates, moving a hair's breadth off a special vertex, where the
 /// parametrisation is singular and all derivatives are reported as zero.
-fn eval_at(surface: &Surface, tri: usize, uv: DVec2) -> (DVec2, Evaluation) {
-    EVALS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let e = surface
-        .eval(tri, uv.x, uv.y)
+fn eval_at(chart: &mut Chart, uv: DVec2) -> Evaluation {
+    let e = chart
+        .eval(uv.x, uv.y)
         .expect("parameters kept inside the triangle");
     if !e.at_special_vertex {
-        return (uv, e);
+        return e;
     }
     let centre = DVec2::splat(1.0 / 3.0);
     let nudged = uv + 1e-9 * (centre - uv);
-    let mut moved = surface.eval(tri, nudged.x, nudged.y).expect("inside");
+    let mut moved = chart.eval(nudged.x, nudged.y).expect("inside");
     moved.x = e.x; // the exact point; derivatives from a hair away
-    (uv, moved)
+    moved
 }
 
-/// Minimises the distance to `p` starting from (tri, v, w). With `walk`, a
-/// minimum on an interior edge whose descent continues across it moves into
-/// the neighbouring triangle; without it the search stays in `tri`.
-pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64, walk: bool) -> Snap {
+/// Minimises the distance to `p` starting from (tri, v, w): a local
+/// minimum of the distance over the surface, and whether the last solve
+/// converged. A minimum on an interior edge
+/// whose descent continues across it moves into the neighbouring triangle;
+/// the walk ends where a hop gains nothing (a minimum on the edge itself, as
+/// on a crease) or at a boundary.
+pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -> (Snap, bool) {
     let (mut tri, mut uv) = (tri, DVec2::new(v, w));
-    let mut hops = 0;
-    loop {
-        let (end, leaving) = descend_in(surface, p, tri, uv);
-        match leaving {
-            Some(edge) if walk && hops < MAX_HOPS => match across(surface, tri, edge, end) {
-                Some((next, next_uv)) => {
-                    tri = next;
-                    uv = next_uv;
-                    hops += 1;
-                }
-                None => return snap_at(surface, p, tri, end),
-            },
-            _ => return snap_at(surface, p, tri, end),
+    let mut best: Option<(Snap, bool)> = None;
+    for _ in 0..=MAX_HOPS {
+        let (end, x, leaving, converged) = descend_in(surface, p, tri, uv, &Region::WHOLE);
+        let here = Snap {
+            tri,
+            v: end.x,
+            w: end.y,
+            point: x,
+            distance: (x - p).length(),
+        };
+        if best.is_some_and(|(b, _)| b.distance <= here.distance) {
+            break;
+        }
+        best = Some((here, converged));
+        // At a corner the descent may go on in any triangle of the fan. At
+        // an irregular vertex the parametrisation is singular and Newton
+        // stalls next to the corner instead, where its steps shrink with
+        // the derivatives' blow-up: that counts as the corner too.
+        let next = match leaving {
+            Some(edge) => across(surface, tri, edge, end),
+            None => (0..3)
+                .find(|&k| (end - CORNERS[k]).abs().max_element() < 1e-6)
+                .and_then(|k| downhill_around(surface, p, tri, k)),
+        };
+        match next {
+            Some((next, next_uv)) => (tri, uv) = (next, next_uv),
+            None => break,
         }
     }
+    best.expect("at least one descent")
 }
 
-fn snap_at(surface: &Surface, p: DVec3, tri: usize, uv: DVec2) -> Snap {
-    let x = surface.eval(tri, uv.x, uv.y).expect("inside").x;
-    Snap {
+/// The nearest point to `p` of the region of triangle `tri` (a local
+/// minimum of the distance there), from `start`, and whether the solve
+/// converged; no walking.
+pub(crate) fn descend_within(
+    surface: &Surface,
+    p: DVec3,
+    tri: usize,
+    start: DVec2,
+    region: &Region,
+) -> (Snap, bool) {
+    let (end, x, _, converged) = descend_in(surface, p, tri, start, region);
+    let snap = Snap {
         tri,
-        v: uv.x,
-        w: uv.y,
+        v: end.x,
+        w: end.y,
         point: x,
         distance: (x - p).length(),
-    }
+    };
+    (snap, converged)
 }
 
-/// Projected Newton inside one triangle. Returns the minimiser found and,
-/// if it sits on one edge and the descent direction crosses it, that local
-/// edge.
-fn descend_in(surface: &Surface, p: DVec3, tri: usize, start: DVec2) -> (DVec2, Option<usize>) {
-    let (mut uv, mut e) = eval_at(surface, tri, start);
+/// The parameters of the three corners.
+const CORNERS: [DVec2; 3] = [DVec2::ZERO, DVec2::X, DVec2::Y];
+
+/// At a corner where the descent in `tri` stopped, the triangle around the
+/// vertex into which the distance still decreases fastest, with the
+/// vertex's parameters there: a minimum is not proven by one triangle of
+/// the fan, and the edge walk only reaches the two beside it.
+fn downhill_around(
+    surface: &Surface,
+    p: DVec3,
+    tri: usize,
+    corner: usize,
+) -> Option<(usize, DVec2)> {
+    let topo = surface.net().topology();
+    let vertex = topo.triangles()[tri][corner];
+    let mut steepest: Option<(f64, usize, DVec2)> = None;
+    for &t in topo.fan(vertex as usize) {
+        let t = t as usize;
+        if t == tri {
+            continue;
+        }
+        let k = topo.triangles()[t].iter().position(|&c| c == vertex)?;
+        let at = CORNERS[k];
+        let e = eval_at(&mut surface.chart(t).ok()?, at);
+        let r = e.x - p;
+        let g = DVec2::new(r.dot(e.xv), r.dot(e.xw));
+        // The slope along each side from the corner, per unit of length on
+        // the surface; the fan's sector is the cone of the two sides.
+        for to in [CORNERS[(k + 1) % 3], CORNERS[(k + 2) % 3]] {
+            let d = to - at;
+            let length = (d.x * e.xv + d.y * e.xw).length();
+            let slope = g.dot(d) / length;
+            if slope < 0.0 && steepest.map_or(true, |s| slope < s.0) {
+                steepest = Some((slope, t, at));
+            }
+        }
+    }
+    steepest.map(|(_, t, at)| (t, at))
+}
+
+/// Projected Newton inside one triangle. Returns the minimiser found, the
+/// surface point there, if it sits on one edge and the descent direction
+/// crosses it that local edge, and whether it converged (false when the
+/// iterations ran out).
+fn descend_in(
+    surface: &Surface,
+    p: DVec3,
+    tri: usize,
+    start: DVec2,
+    region: &Region,
+) -> (DVec2, DVec3, Option<usize>, bool) {
+    let mut chart = surface.chart(tri).expect("a triangle of the net");
+    let mut uv = start;
+    let mut e = eval_at(&mut chart, uv);
     let mut f = 0.5 * (e.x - p).length_squared();
     for _ in 0..MAX_ITERATIONS {
         let r = e.x - p;
@@ -112,21 +225,19 @@ fn descend_in(surface: &Surface, p: DVec3, tri: usize, start: DVec2) -> (DVec2, 
         let (a, b, c) = if positive_definite(full) {
             full
         } else {
-            gauss_newton
+            shifted(full, gauss_newton)
         };
-        let active: Vec<usize> = (0..3)
-            .filter(|&k| CONSTRAINTS[k].0.dot(uv) - CONSTRAINTS[k].1 <= 1e-15)
-            .collect();
-        let feasible = |s: DVec2| active.iter().all(|&k| CONSTRAINTS[k].0.dot(s) >= 0.0);
+        let active = [0, 1, 2].map(|k| region.on_side(k, uv));
+        let feasible = |s: DVec2| (0..3).all(|k| !active[k] || region.sides[k].0.dot(s) >= 0.0);
         let newton = solve2(a, b, c, -g);
         let step = if feasible(newton) {
             Some(newton)
         } else {
             // Along an active edge, in whichever direction descends.
-            active
-                .iter()
-                .filter_map(|&k| {
-                    let d = DVec2::new(CONSTRAINTS[k].0.y, -CONSTRAINTS[k].0.x);
+            (0..3)
+                .filter(|&k| active[k])
+                .filter_map(|k| {
+                    let d = DVec2::new(region.sides[k].0.y, -region.sides[k].0.x);
                     let along = |(a, b, c): (f64, f64, f64)| {
                         d.x * d.x * a + 2.0 * d.x * d.y * b + d.y * d.y * c
                     };
@@ -139,36 +250,60 @@ fn descend_in(surface: &Surface, p: DVec3, tri: usize, start: DVec2) -> (DVec2, 
                 .min_by(|s, t| g.dot(*s).total_cmp(&g.dot(*t)))
         };
         // The edge the descent would cross, when the point rests on one edge.
-        let crossing = match active[..] {
-            [k] if CONSTRAINTS[k].0.dot(g) > 0.0 => Some(edge_of(k)),
+        let crossing = match active {
+            [true, false, false] => Some(0),
+            [false, true, false] => Some(1),
+            [false, false, true] => Some(2),
             _ => None,
+        }
+        .filter(|&k| region.sides[k].0.dot(g) > 0.0);
+        let Some(step) = step.filter(|s| s.is_finite() && *s != DVec2::ZERO) else {
+            return (uv, e.x, crossing, true);
         };
-        let Some(step) = step.filter(|s| s.is_finite() && s.length() > STEP_TOLERANCE) else {
-            return (uv, crossing);
-        };
-        // Longest feasible fraction of the step.
-        let mut alpha: f64 = 1.0;
-        for (n, off) in CONSTRAINTS {
+        // Longest feasible multiple of the step.
+        let mut reach = f64::INFINITY;
+        for (n, off) in region.sides {
             let rate = n.dot(step);
             if rate < 0.0 {
-                alpha = alpha.min(((off - n.dot(uv)) / rate).max(0.0));
+                reach = reach.min(((off - n.dot(uv)) / rate).max(0.0));
             }
         }
+        let mut alpha = reach.min(1.0);
         // Close to a minimiser Newton converges quadratically: a step this
         // small, or one whose predicted gain is at round-off level, leaves
-        // an error below round-off, so take it and stop.
+        // an error below round-off, so take it and stop. Unless the point
+        // is not stationary at all: next to an irregular vertex the
+        // derivatives blow up or vanish and Newton's steps shrink while the
+        // distance still falls — there the step is stretched.
         let slope = g.dot(step).min(0.0);
-        if alpha * step.length() <= CONVERGED_STEP || -alpha * slope <= 1e-14 * f {
-            let (t_uv, t_e) = eval_at(surface, tri, clamp(uv + alpha * step));
-            if (t_e.x - p).length_squared() <= 2.0 * f {
-                return (t_uv, crossing);
+        let length = alpha * step.length();
+        if length <= CONVERGED_STEP || -alpha * slope <= 1e-14 * f {
+            let at_corner = CORNERS.iter().any(|c| (uv - *c).abs().max_element() < 1e-3);
+            if at_corner && !is_stationary(&e, r) && reach > alpha {
+                if let Some((t_uv, t_f)) =
+                    stretch(&mut chart, p, region, (uv, step), (alpha, reach), f)
+                {
+                    uv = t_uv;
+                    e = eval_at(&mut chart, uv);
+                    f = t_f;
+                    continue;
+                }
             }
-            return (uv, crossing);
+            if length <= STEP_TOLERANCE {
+                return (uv, e.x, crossing, true);
+            }
+            let t_uv = region.clamp(uv + alpha * step);
+            let t_x = chart.point(t_uv.x, t_uv.y).expect("inside");
+            if (t_x - p).length_squared() <= 2.0 * f {
+                return (t_uv, t_x, crossing, true);
+            }
+            return (uv, e.x, crossing, true);
         }
         // Backtrack until f decreases enough (Armijo).
         let mut moved = None;
         for _ in 0..MAX_HALVINGS {
-            let (t_uv, t_e) = eval_at(surface, tri, clamp(uv + alpha * step));
+            let t_uv = region.clamp(uv + alpha * step);
+            let t_e = eval_at(&mut chart, t_uv);
             let t_f = 0.5 * (t_e.x - p).length_squared();
             if t_f <= f + 1e-4 * alpha * slope {
                 moved = Some((t_uv, t_e, t_f));
@@ -177,11 +312,54 @@ fn descend_in(surface: &Surface, p: DVec3, tri: usize, start: DVec2) -> (DVec2, 
             alpha *= 0.5;
         }
         let Some((t_uv, t_e, t_f)) = moved.filter(|m| m.0 != uv) else {
-            return (uv, crossing); // no decrease left: round-off floor
+            return (uv, e.x, crossing, true); // no decrease left: round-off floor
         };
         (uv, e, f) = (t_uv, t_e, t_f);
     }
-    (uv, None)
+    (uv, e.x, None, false)
+}
+
+/// Whether the residual r = X − p is normal to the surface (within a
+/// millionth of a radian): nearly a stationary point of the distance,
+/// whatever the parametrisation does.
+fn is_stationary(e: &Evaluation, r: DVec3) -> bool {
+    let n = e.xv.cross(e.xw);
+    let Some(n) = n.try_normalize() else {
+        return true;
+    };
+    let tangential = r - r.dot(n) * n;
+    tangential.length() <= 1e-6 * r.length()
+}
+
+/// Doubles a step along `step` from multiple `alpha` (up to `reach`, the
+/// region's boundary) while the distance keeps falling; the stretched point
+/// and its f, if it gains on both the start and the plain step.
+fn stretch(
+    chart: &mut Chart,
+    p: DVec3,
+    region: &Region,
+    (uv, step): (DVec2, DVec2),
+    (alpha, reach): (f64, f64),
+    f: f64,
+) -> Option<(DVec2, f64)> {
+    let f_at = |chart: &mut Chart, t: f64| {
+        let at = region.clamp(uv + t * step);
+        let x = chart.point(at.x, at.y).expect("clamped inside");
+        0.5 * (x - p).length_squared()
+    };
+    let (mut t, mut best) = (alpha, f_at(chart, alpha));
+    for _ in 0..64 {
+        let longer = (2.0 * t).min(reach);
+        if longer <= t {
+            break;
+        }
+        let f_longer = f_at(chart, longer);
+        if f_longer >= best {
+            break;
+        }
+        (t, best) = (longer, f_longer);
+    }
+    (t > alpha && best < f).then(|| (region.clamp(uv + t * step), best))
 }
 
 /// The Hessian of ½|X − p|² (JᵀJ plus the curvature terms r · X₍₎) and
@@ -198,6 +376,28 @@ fn hessians(e: &Evaluation, r: DVec3) -> ((f64, f64, f64), (f64, f64, f64)) {
     (full, gn)
 }
 
+/// Where the Hessian H is not positive definite (far points, concave
+/// regions, near a focal point), H + μ G with G = JᵀJ the metric, shifted
+/// just enough that its smallest eigenvalue relative to G is ¼. Plain
+/// Gauss–Newton (G alone) ignores the curvature altogether: across a stiff
+/// direction it overshoots and along a soft one it crawls, and a far point
+/// over a bumpy scan then zig-zags for dozens of steps.
+fn shifted(h: (f64, f64, f64), g: (f64, f64, f64)) -> (f64, f64, f64) {
+    // det(H − λ G) = 0, a quadratic in λ.
+    let qa = g.0 * g.2 - g.1 * g.1;
+    let qb = -(h.0 * g.2 + h.2 * g.0 - 2.0 * h.1 * g.1);
+    let qc = h.0 * h.2 - h.1 * h.1;
+    if qa.is_nan() || qa <= 0.0 {
+        return g;
+    }
+    let lowest = (-qb - (qb * qb - 4.0 * qa * qc).max(0.0).sqrt()) / (2.0 * qa);
+    let mu = (0.25 - lowest).max(0.0);
+    if !mu.is_finite() {
+        return g;
+    }
+    (h.0 + mu * g.0, h.1 + mu * g.1, h.2 + mu * g.2)
+}
+
 fn positive_definite((a, b, c): (f64, f64, f64)) -> bool {
     a > 0.0 && a * c - b * b > 1e-12 * (a * c).abs()
 }
@@ -211,13 +411,6 @@ fn solve2(a: f64, b: f64, c: f64, rhs: DVec2) -> DVec2 {
         let scale = a.max(c).max(f64::MIN_POSITIVE);
         rhs / scale
     }
-}
-
-/// The nearest point of the parameter triangle (round-off repair).
-fn clamp(uv: DVec2) -> DVec2 {
-    let (v, w) = (uv.x.max(0.0), uv.y.max(0.0));
-    let excess = (v + w - 1.0).max(0.0);
-    DVec2::new((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0))
 }
 
 /// The same surface point seen from the triangle across local edge `edge`,
@@ -240,7 +433,5 @@ fn across(surface: &Surface, tri: usize, edge: usize, uv: DVec2) -> Option<(usiz
             moved[j] = weights[k];
         }
     }
-    Some((next, clamp(DVec2::new(moved[1], moved[2]))))
+    Some((next, Region::WHOLE.clamp(DVec2::new(moved[1], moved[2]))))
 }
-
-pub static EVALS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);

@@ -1,0 +1,296 @@
+//! Cells: the pieces of a control triangle's patch after a few uniform
+//! subdivision steps, each with a container that provably holds its piece
+//! of the surface and is tight to second order.
+//!
+//! A cell's container is built around the flat triangle through the surface
+//! points at its corners: every point of the piece lies within `lateral` of
+//! that triangle when projected onto its plane, and between `below` and
+//! `above` along its normal. Far from the cell this is as good as the box;
+//! right above it the lower bound it gives is the height minus the piece's
+//! bulge, which is of the order of curvature × size² — so only the cells
+//! next to the nearest point survive the pruning.
+
+use glam::{DVec2, DVec3};
+
+/// A convex set holding one cell's piece of the surface.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CellBound {
+    /// The surface at the cell's corners.
+    corners: [DVec3; 3],
+    /// Unit normal of the flat triangle (any unit vector when it is
+    /// degenerate: the container stays valid, only looser).
+    normal: DVec3,
+    /// How far the piece reaches, in the plane, beyond the flat triangle.
+    lateral: f64,
+    /// The range of n · (x − corner 0) over the piece.
+    below: f64,
+    above: f64,
+}
+
+impl CellBound {
+    /// The container of the convex hull of `points` (which must hold the
+    /// piece), around the flat triangle `corners`, grown by `pad` for
+    /// round-off.
+    pub(crate) fn new(
+        corners: [DVec3; 3],
+        points: impl IntoIterator<Item = DVec3>,
+        pad: f64,
+    ) -> Self {
+        let normal = flat_normal(corners);
+        let mut bound = CellBound {
+            corners,
+            normal,
+            lateral: 0.0,
+            below: 0.0,
+            above: 0.0,
+        };
+        for s in points {
+            let (lateral, height) = bound.offsets(s);
+            bound.lateral = bound.lateral.max(lateral);
+            bound.below = bound.below.min(height);
+            bound.above = bound.above.max(height);
+        }
+        bound.lateral += pad;
+        bound.below -= pad;
+        bound.above += pad;
+        bound
+    }
+
+    /// The container of the piece moved by any convex combination of
+    /// `shifts` (the corner displacements of a displaced surface): the
+    /// Minkowski sum with their hull.
+    pub(crate) fn shifted(mut self, shifts: [DVec3; 3]) -> Self {
+        let heights = shifts.map(|d| self.normal.dot(d));
+        let reach = shifts
+            .into_iter()
+            .zip(heights)
+            .map(|(d, height)| (d - height * self.normal).length())
+            .fold(0.0, f64::max);
+        self.lateral += reach;
+        self.below += heights.into_iter().fold(f64::INFINITY, f64::min);
+        self.above += heights.into_iter().fold(f64::NEG_INFINITY, f64::max);
+        self
+    }
+
+    /// Distance of x from the flat triangle within its plane, and height of
+    /// x above that plane.
+    fn offsets(&self, x: DVec3) -> (f64, f64) {
+        let height = self.normal.dot(x - self.corners[0]);
+        let in_plane = x - height * self.normal;
+        let [a, b, c] = self.corners;
+        let q = closest_in_triangle(in_plane, a, b, c);
+        let nearest = a + q.x * (b - a) + q.y * (c - a);
+        ((in_plane - nearest).length(), height)
+    }
+
+    /// A lower bound on the distance from `p` to the cell's piece of
+    /// surface: the distance to the container, a product of a thickened
+    /// triangle and an interval.
+    pub(crate) fn lower_bound(&self, p: DVec3) -> f64 {
+        let (lateral, height) = self.offsets(p);
+        let across = (lateral - self.lateral).max(0.0);
+        let along = (self.below - height).max(height - self.above).max(0.0);
+        (across * across + along * along).sqrt()
+    }
+
+    /// Barycentric (v, w) of the point of the flat triangle nearest to `p`.
+    pub(crate) fn nearest(&self, p: DVec3) -> DVec2 {
+        let [a, b, c] = self.corners;
+        closest_in_triangle(p, a, b, c)
+    }
+}
+
+/// The unit normal of a triangle, or a unit vector if it has none.
+fn flat_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+    let (e1, e2) = (b - a, c - a);
+    e1.cross(e2)
+        .try_normalize()
+        .or_else(|| e1.any_orthonormal_vector().try_normalize())
+        .or_else(|| e2.any_orthonormal_vector().try_normalize())
+        .unwrap_or(DVec3::Z)
+}
+
+/// Barycentric (v, w) of the point of triangle (a, b, c) nearest to p, the
+/// point being a + v (b − a) + w (c − a). By Voronoi regions of the corners
+/// and edges; a degenerate triangle gets the nearest point of its sides.
+pub(crate) fn closest_in_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec2 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return DVec2::ZERO;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return DVec2::X;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return DVec2::new(d1 / (d1 - d3), 0.0);
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return DVec2::Y;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return DVec2::new(0.0, d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 >= d3 && d5 >= d6 {
+        let t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return DVec2::new(1.0 - t, t);
+    }
+    let sum = va + vb + vc;
+    if sum > 0.0 && sum.is_finite() {
+        return DVec2::new(vb, vc) / sum;
+    }
+    // Degenerate (collinear or non-finite): the nearest of the three sides.
+    let side = |from: DVec2, to: DVec2| {
+        let (x0, x1) = (a + from.x * ab + from.y * ac, a + to.x * ab + to.y * ac);
+        let len2 = (x1 - x0).length_squared();
+        let s = if len2 > 0.0 {
+            ((p - x0).dot(x1 - x0) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (
+            (x0 + s * (x1 - x0) - p).length_squared(),
+            from + s * (to - from),
+        )
+    };
+    [
+        side(DVec2::ZERO, DVec2::X),
+        side(DVec2::X, DVec2::Y),
+        side(DVec2::Y, DVec2::ZERO),
+    ]
+    .into_iter()
+    .min_by(|s, t| s.0.total_cmp(&t.0))
+    .map_or(DVec2::ZERO, |(_, q)| q)
+}
+
+/// The control triangle of cell `cell` of level `level` and the parameters
+/// of its corners there. Cells are numbered as uniform refinement numbers
+/// triangles: the children of t are 4t … 4t + 3, (c0 m0 m2), (m0 c1 m1),
+/// (m2 m1 c2), (m1 m2 m0), mᵢ the midpoint of the side from cᵢ to cᵢ₊₁.
+pub(crate) fn cell_corners(cell: usize, level: u32) -> (usize, [DVec2; 3]) {
+    let mut c = [DVec2::ZERO, DVec2::X, DVec2::Y];
+    for k in (0..level).rev() {
+        let m = [
+            (c[0] + c[1]) / 2.0,
+            (c[1] + c[2]) / 2.0,
+            (c[2] + c[0]) / 2.0,
+        ];
+        c = match (cell >> (2 * k)) & 3 {
+            0 => [c[0], m[0], m[2]],
+            1 => [m[0], c[1], m[1]],
+            2 => [m[2], m[1], c[2]],
+            _ => [m[1], m[2], m[0]],
+        };
+    }
+    (cell >> (2 * level), c)
+}
+
+/// The cell of level `level` holding (v, w) of control triangle `tri` (on
+/// a side shared by two cells, either).
+pub(crate) fn cell_at(tri: usize, v: f64, w: f64, level: u32) -> usize {
+    let (mut cell, mut s, mut t) = (tri, v, w);
+    for _ in 0..level {
+        let (child, s1, t1) = if s + t <= 0.5 {
+            (0, 2.0 * s, 2.0 * t)
+        } else if s >= 0.5 {
+            (1, 2.0 * s - 1.0, 2.0 * t)
+        } else if t >= 0.5 {
+            (2, 2.0 * s, 2.0 * t - 1.0)
+        } else {
+            (3, 1.0 - 2.0 * s, 1.0 - 2.0 * t)
+        };
+        (cell, s, t) = (4 * cell + child, s1, t1);
+    }
+    cell
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Voronoi-region answer against a dense sampling of the triangle.
+    #[test]
+    fn closest_in_triangle_is_the_nearest_point() {
+        let tris = [
+            [DVec3::ZERO, DVec3::X, DVec3::Y],
+            [
+                DVec3::new(0.3, -0.2, 0.1),
+                DVec3::new(2.0, 0.5, -0.4),
+                DVec3::new(-0.5, 1.5, 0.8),
+            ],
+            // Degenerate: collinear corners.
+            [DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)],
+        ];
+        let n = 60;
+        for [a, b, c] in tris {
+            for i in -4..=8 {
+                for j in -4..=8 {
+                    let p = DVec3::new(i as f64 / 4.0, j as f64 / 4.0, 0.3 - 0.07 * i as f64);
+                    let q = closest_in_triangle(p, a, b, c);
+                    assert!(q.x >= 0.0 && q.y >= 0.0 && q.x + q.y <= 1.0 + 1e-15);
+                    let got = (a + q.x * (b - a) + q.y * (c - a) - p).length();
+                    let sampled = (0..=n)
+                        .flat_map(|k| (0..=n - k).map(move |l| (k, l)))
+                        .map(|(k, l)| {
+                            let (v, w) = (k as f64 / n as f64, l as f64 / n as f64);
+                            (a + v * (b - a) + w * (c - a) - p).length()
+                        })
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(got <= sampled + 1e-12, "{p}: {got} > {sampled}");
+                    assert!(got >= sampled - 0.05, "{p}: {got} far below the sampling");
+                }
+            }
+        }
+    }
+
+    /// Every point of the hull is at least the bound away; a point above the
+    /// flat triangle gets its height minus the bulge.
+    #[test]
+    fn lower_bound_holds_for_the_hull() {
+        let corners = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        let points = [
+            DVec3::new(-0.1, -0.1, 0.02),
+            DVec3::new(1.1, 0.0, -0.01),
+            DVec3::new(0.0, 1.1, 0.03),
+            DVec3::new(0.3, 0.3, 0.05),
+        ];
+        let bound = CellBound::new(corners, points, 0.0);
+        let p = DVec3::new(0.25, 0.25, 1.0);
+        assert!((bound.lower_bound(p) - 0.95).abs() < 1e-15);
+        for q in [DVec3::new(3.0, -2.0, 0.5), DVec3::new(-1.0, 0.4, -0.7), p] {
+            for (i, s) in points.iter().enumerate() {
+                for t in &points[i..] {
+                    let x = 0.5 * (*s + *t);
+                    assert!(bound.lower_bound(q) <= (x - q).length() + 1e-15);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cells_tile_the_parameter_triangle() {
+        for level in 0..4 {
+            let area: f64 = (0..(1usize << (2 * level)) * 3)
+                .map(|cell| {
+                    let (tri, [a, b, c]) = cell_corners(cell, level);
+                    assert_eq!(tri, cell >> (2 * level));
+                    let (e1, e2) = (b - a, c - a);
+                    (e1.x * e2.y - e1.y * e2.x).abs() / 2.0
+                })
+                .sum();
+            assert!((area - 1.5).abs() < 1e-15, "level {level}: {area}");
+            for cell in 0..(1usize << (2 * level)) * 3 {
+                let (tri, [a, b, c]) = cell_corners(cell, level);
+                let centre = (a + b + c) / 3.0;
+                assert_eq!(cell_at(tri, centre.x, centre.y, level), cell);
+            }
+        }
+    }
+}

@@ -1,0 +1,301 @@
+//! The snapping index: a bounding-volume hierarchy over the control
+//! triangles' patches, and below each patch a quadtree of cells — the
+//! pieces the patch falls into under a few uniform subdivision steps — each
+//! node with a convex container of its piece of surface ([`CellBound`]).
+//!
+//! Why the containers hold: every Loop mask has non-negative weights summing
+//! to one, so a patch lies in the convex hull of its support (the control
+//! points of its corners' one-rings, seed 000 §2); after one more step the
+//! same holds for each of its four children, after two for each of its
+//! sixteen grandchildren. So a finest cell's piece lies in the hull of the
+//! twice-refined points around its children's corners — the vertex points of
+//! those six vertices and the edge points of the edges at them — which hugs
+//! the surface far closer than the control points do; a coarser cell's
+//! piece, the union of its finest cells' pieces, lies in the hull of all of
+//! theirs.
+
+use super::cell::{cell_at, cell_corners, CellBound};
+use crate::features::Features;
+use crate::refine::subdivide_points;
+use crate::surface::Surface;
+use crate::topology::Topology;
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// Patches are cut until the quadtrees would hold more than this many cells
+/// in all (pig: 891 control triangles, cut 3 times: 75 735 cells), and at
+/// least once unless that alone would exceed `CELL_LIMIT` (bunny00: 75 408
+/// control triangles, cut once: 377 040 cells, 45 MB). Finer cells prune
+/// better and start Newton closer, and each solve only answers for one
+/// cell — its distance having one basin there is what the search assumes,
+/// and on a bumpy scan whole patches can hold several.
+const CELL_BUDGET: usize = 1 << 17;
+const CELL_LIMIT: usize = 1 << 21;
+const MAX_CELL_LEVEL: u32 = 3;
+
+/// Subdivision steps from control triangles to the finest cells.
+fn cell_level(triangles: usize) -> u32 {
+    let cells = |level: u32| (0..=level).map(|k| triangles << (2 * k)).sum::<usize>();
+    let level = (0..=MAX_CELL_LEVEL)
+        .rev()
+        .find(|&l| cells(l) <= CELL_BUDGET)
+        .unwrap_or(0);
+    if level == 0 && cells(1) <= CELL_LIMIT {
+        1
+    } else {
+        level
+    }
+}
+
+/// What the search needs beyond the surface: built on the first snap.
+pub(crate) struct SnapIndex {
+    /// The patches' hierarchy; node 0 is the root.
+    pub(crate) nodes: Vec<BoxNode>,
+    /// The containers of every cell, coarsest level first; a level-k cell c
+    /// (numbered as uniform refinement numbers triangles) is entry
+    /// `level_start[k] + c`, its children are cells 4c … 4c + 3 of level k + 1.
+    pub(crate) cells: Vec<CellBound>,
+    pub(crate) level_start: Vec<usize>,
+    /// Subdivision steps from control triangles to the finest cells.
+    pub(crate) level: u32,
+}
+
+/// A node of the patches' hierarchy: an axis-aligned box around the
+/// supports below it, and either two child nodes or one patch.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BoxNode {
+    pub(crate) lo: DVec3,
+    pub(crate) hi: DVec3,
+    pub(crate) content: Content,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Content {
+    Children(u32, u32),
+    Patch(u32),
+}
+
+impl BoxNode {
+    /// Distance from p to the box (zero inside).
+    pub(crate) fn distance(&self, p: DVec3) -> f64 {
+        let d = (self.lo - p).max(p - self.hi).max(DVec3::ZERO);
+        d.length()
+    }
+}
+
+/// One level of a uniform refinement, owned.
+struct Level {
+    topo: Topology,
+    features: Features,
+    points: Vec<DVec3>,
+}
+
+impl Level {
+    fn refine(topo: &Topology, features: &Features, points: &[DVec3]) -> Level {
+        Level {
+            topo: topo.refined(),
+            features: features.refined(topo),
+            points: subdivide_points(topo, features, points),
+        }
+    }
+}
+
+impl SnapIndex {
+    pub(crate) fn new(surface: &Surface) -> SnapIndex {
+        let net = surface.net();
+        let nt = net.triangles().len();
+        let level = cell_level(nt);
+        // The net refined level, level + 1 and level + 2 times.
+        let mut cut: Option<Level> = None;
+        for _ in 0..level {
+            cut = Some(match &cut {
+                None => Level::refine(net.topology(), net.features(), net.points()),
+                Some(l) => Level::refine(&l.topo, &l.features, &l.points),
+            });
+        }
+        let (topo, features, points) = match &cut {
+            None => (net.topology(), net.features(), net.points()),
+            Some(l) => (&l.topo, &l.features, &l.points[..]),
+        };
+        let once = Level::refine(topo, features, points);
+        let twice = subdivide_points(&once.topo, &once.features, &once.points);
+        let support = Support::new(topo, &once.topo, twice);
+
+        // Containers and boxes are grown by round-off so that evaluated
+        // points, computed in floating point, never fall outside them.
+        let pad = 1e-12 * net.bbox_diagonal();
+        let mut level_start = vec![0];
+        for k in 0..=level {
+            level_start.push(level_start[k as usize] + (nt << (2 * k)));
+        }
+        let cells: Vec<CellBound> = (0..=level)
+            .flat_map(|k| (0..nt << (2 * k)).map(move |c| (k, c)))
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|(k, c)| {
+                // The finest cells below cell c of level k.
+                let finest = c << (2 * (level - k))..(c + 1) << (2 * (level - k));
+                let (tri, uv) = cell_corners(c, k);
+                let corners = uv.map(|q| surface.point(tri, q.x, q.y).expect("corners are inside"));
+                let points = finest.flat_map(|f| support.points(f));
+                CellBound::new(corners, points, pad).shifted(surface.displacements_of(tri))
+            })
+            .collect();
+        let boxes: Vec<(DVec3, DVec3)> = (0..nt)
+            .into_par_iter()
+            .map(|t| {
+                let finest = t << (2 * level)..(t + 1) << (2 * level);
+                let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+                for s in finest.flat_map(|f| support.points(f)) {
+                    lo = lo.min(s);
+                    hi = hi.max(s);
+                }
+                // The displaced piece lies in the box plus the box of the shifts.
+                let d = surface.displacements_of(t);
+                let (dlo, dhi) = (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]));
+                (lo + dlo - pad, hi + dhi + pad)
+            })
+            .collect();
+        SnapIndex {
+            nodes: hierarchy(&boxes),
+            cells,
+            level_start,
+            level,
+        }
+    }
+
+    /// The container of cell `c` of level `k`.
+    pub(crate) fn cell(&self, k: u32, c: usize) -> &CellBound {
+        &self.cells[self.level_start[k as usize] + c]
+    }
+
+    /// The control triangle of finest cell `cell` and where a local solve
+    /// for `p` should start there: the parameters of the point of the
+    /// cell's flat triangle nearest to p.
+    ///
+    /// The start is pulled a twentieth of the way to the cell's centre: at a
+    /// corner that is an irregular vertex the parametrisation is singular,
+    /// and Newton would crawl away from it by small factors per step.
+    pub(crate) fn start(&self, cell: usize, p: DVec3) -> (usize, DVec2) {
+        let (tri, [a, b, c]) = cell_corners(cell, self.level);
+        let q = self.cell(self.level, cell).nearest(p);
+        let uv = a + q.x * (b - a) + q.y * (c - a);
+        (tri, 0.95 * uv + 0.05 * (a + b + c) / 3.0)
+    }
+
+    /// The parameters of finest cell `cell`'s corners in its control triangle.
+    pub(crate) fn cell_corners(&self, cell: usize) -> [DVec2; 3] {
+        cell_corners(cell, self.level).1
+    }
+
+    /// The finest cell holding (tri, v, w).
+    pub(crate) fn cell_at(&self, tri: usize, v: f64, w: f64) -> usize {
+        cell_at(tri, v, w, self.level)
+    }
+}
+
+/// A binary hierarchy of the patches' boxes, split at the median of the
+/// box centres along the widest extent of the centres, one patch a leaf.
+fn hierarchy(boxes: &[(DVec3, DVec3)]) -> Vec<BoxNode> {
+    fn build(boxes: &[(DVec3, DVec3)], patches: &mut [u32], nodes: &mut Vec<BoxNode>) -> u32 {
+        let (lo, hi) = patches
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &t| {
+                (lo.min(boxes[t as usize].0), hi.max(boxes[t as usize].1))
+            });
+        let at = nodes.len();
+        nodes.push(BoxNode {
+            lo,
+            hi,
+            content: Content::Patch(patches[0]),
+        });
+        if patches.len() > 1 {
+            let centre = |t: u32| boxes[t as usize].0 + boxes[t as usize].1;
+            let (clo, chi) = patches
+                .iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &t| {
+                    (lo.min(centre(t)), hi.max(centre(t)))
+                });
+            let extent = chi - clo;
+            let axis = if extent.x >= extent.y && extent.x >= extent.z {
+                0
+            } else if extent.y >= extent.z {
+                1
+            } else {
+                2
+            };
+            let half = patches.len() / 2;
+            patches
+                .select_nth_unstable_by(half, |&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+            let (left, right) = patches.split_at_mut(half);
+            let l = build(boxes, left, nodes);
+            let r = build(boxes, right, nodes);
+            nodes[at].content = Content::Children(l, r);
+        }
+        at as u32
+    }
+    let mut patches: Vec<u32> = (0..boxes.len() as u32).collect();
+    let mut nodes = Vec::with_capacity(2 * boxes.len());
+    build(boxes, &mut patches, &mut nodes);
+    nodes
+}
+
+/// The twice-refined points whose hull holds each finest cell's piece.
+struct Support<'a> {
+    /// The finest cells' triangulation (the net `level` times refined).
+    topo: &'a Topology,
+    /// Vertices of the once-refined net.
+    nv1: usize,
+    /// The once-refined net's edges at each of its vertices (CSR).
+    vertex_edge_start: Vec<u32>,
+    vertex_edges: Vec<u32>,
+    /// The twice-refined points: once-refined vertices first, then one per
+    /// once-refined edge.
+    points: Vec<DVec3>,
+}
+
+impl<'a> Support<'a> {
+    fn new(topo: &'a Topology, topo1: &Topology, points: Vec<DVec3>) -> Support<'a> {
+        let nv1 = topo1.num_vertices();
+        let mut vertex_edge_start = vec![0u32; nv1 + 1];
+        for &[a, b] in topo1.edges() {
+            vertex_edge_start[a as usize + 1] += 1;
+            vertex_edge_start[b as usize + 1] += 1;
+        }
+        for v in 0..nv1 {
+            vertex_edge_start[v + 1] += vertex_edge_start[v];
+        }
+        let mut fill = vertex_edge_start.clone();
+        let mut vertex_edges = vec![0u32; 2 * topo1.edges().len()];
+        for (e, &[a, b]) in topo1.edges().iter().enumerate() {
+            for v in [a, b] {
+                vertex_edges[fill[v as usize] as usize] = e as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        Support {
+            topo,
+            nv1,
+            vertex_edge_start,
+            vertex_edges,
+            points,
+        }
+    }
+
+    /// For each corner of the cell's four children (its own corners and the
+    /// once-refined vertices on its sides), the vertex point and the edge
+    /// points of the once-refined edges there (some more than once).
+    fn points(&self, cell: usize) -> impl Iterator<Item = DVec3> + '_ {
+        let nv = self.topo.num_vertices();
+        let corners = self.topo.triangles()[cell].map(|c| c as usize);
+        let mids = self.topo.triangle_edges()[cell].map(|e| nv + e as usize);
+        corners.into_iter().chain(mids).flat_map(move |u| {
+            let edges = self.vertex_edge_start[u] as usize..self.vertex_edge_start[u + 1] as usize;
+            std::iter::once(self.points[u]).chain(
+                self.vertex_edges[edges]
+                    .iter()
+                    .map(move |&e| self.points[self.nv1 + e as usize]),
+            )
+        })
+    }
+}
