@@ -11,18 +11,21 @@
 //! next to the nearest point survive the pruning.
 
 use glam::{DVec2, DVec3};
+use std::ops::{Add, Mul, Sub};
 
-/// A convex set holding one cell's piece of the surface.
+/// A convex set holding one cell's piece of the surface, in the frame of
+/// its flat triangle: origin at corner 0, axes e1, e2 in the plane and the
+/// unit normal n (any orthonormal frame when the triangle is degenerate:
+/// the container stays valid, only looser).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct CellBound {
-    /// The surface at the cell's corners.
-    corners: [DVec3; 3],
-    /// Unit normal of the flat triangle (any unit vector when it is
-    /// degenerate: the container stays valid, only looser).
-    normal: DVec3,
+    origin: DVec3,
+    axes: [DVec3; 3],
+    /// Corners 1 and 2 in the plane's coordinates (corner 0 is the origin).
+    corners: [DVec2; 2],
     /// How far the piece reaches, in the plane, beyond the flat triangle.
     lateral: f64,
-    /// The range of n · (x − corner 0) over the piece.
+    /// The range of the height n · (x − origin) over the piece.
     below: f64,
     above: f64,
 }
@@ -32,18 +35,25 @@ impl CellBound {
     /// piece), around the flat triangle `corners`, grown by `pad` for
     /// round-off.
     pub(crate) fn new(
-        corners: [DVec3; 3],
+        [a, b, c]: [DVec3; 3],
         points: impl IntoIterator<Item = DVec3>,
         pad: f64,
     ) -> Self {
-        let normal = flat_normal(corners);
+        let n = flat_normal([a, b, c]);
+        let e1 = (b - a)
+            .reject_from_normalized(n)
+            .try_normalize()
+            .unwrap_or_else(|| n.any_orthonormal_vector());
+        let axes = [e1, n.cross(e1), n];
         let mut bound = CellBound {
-            corners,
-            normal,
+            origin: a,
+            axes,
+            corners: [DVec2::ZERO; 2],
             lateral: 0.0,
             below: 0.0,
             above: 0.0,
         };
+        bound.corners = [b, c].map(|x| bound.local(x).truncate());
         for s in points {
             let (lateral, height) = bound.offsets(s);
             bound.lateral = bound.lateral.max(lateral);
@@ -60,43 +70,64 @@ impl CellBound {
     /// `shifts` (the corner displacements of a displaced surface): the
     /// Minkowski sum with their hull.
     pub(crate) fn shifted(mut self, shifts: [DVec3; 3]) -> Self {
-        let heights = shifts.map(|d| self.normal.dot(d));
-        let reach = shifts
-            .into_iter()
-            .zip(heights)
-            .map(|(d, height)| (d - height * self.normal).length())
+        let local = shifts.map(|d| {
+            DVec3::new(
+                d.dot(self.axes[0]),
+                d.dot(self.axes[1]),
+                d.dot(self.axes[2]),
+            )
+        });
+        self.lateral += local
+            .iter()
+            .map(|d| d.truncate().length())
             .fold(0.0, f64::max);
-        self.lateral += reach;
-        self.below += heights.into_iter().fold(f64::INFINITY, f64::min);
-        self.above += heights.into_iter().fold(f64::NEG_INFINITY, f64::max);
+        self.below += local.iter().map(|d| d.z).fold(f64::INFINITY, f64::min);
+        self.above += local.iter().map(|d| d.z).fold(f64::NEG_INFINITY, f64::max);
         self
+    }
+
+    /// x in the frame: in-plane coordinates and height.
+    fn local(&self, x: DVec3) -> DVec3 {
+        let r = x - self.origin;
+        DVec3::new(
+            r.dot(self.axes[0]),
+            r.dot(self.axes[1]),
+            r.dot(self.axes[2]),
+        )
+    }
+
+    /// Distance of an in-plane point from the flat triangle.
+    fn outside(&self, q: DVec2) -> f64 {
+        let [b, c] = self.corners;
+        let t = closest_in_triangle(q, DVec2::ZERO, b, c);
+        (q - (t.x * b + t.y * c)).length()
     }
 
     /// Distance of x from the flat triangle within its plane, and height of
     /// x above that plane.
     fn offsets(&self, x: DVec3) -> (f64, f64) {
-        let height = self.normal.dot(x - self.corners[0]);
-        let in_plane = x - height * self.normal;
-        let [a, b, c] = self.corners;
-        let q = closest_in_triangle(in_plane, a, b, c);
-        let nearest = a + q.x * (b - a) + q.y * (c - a);
-        ((in_plane - nearest).length(), height)
+        let q = self.local(x);
+        (self.outside(q.truncate()), q.z)
     }
 
     /// A lower bound on the distance from `p` to the cell's piece of
     /// surface: the distance to the container, a product of a thickened
-    /// triangle and an interval.
-    pub(crate) fn lower_bound(&self, p: DVec3) -> f64 {
-        let (lateral, height) = self.offsets(p);
-        let across = (lateral - self.lateral).max(0.0);
-        let along = (self.below - height).max(height - self.above).max(0.0);
+    /// triangle and an interval. Once the height alone rules the cell out
+    /// (reaches `cutoff`), that is returned without the in-plane part.
+    pub(crate) fn lower_bound(&self, p: DVec3, cutoff: f64) -> f64 {
+        let q = self.local(p);
+        let along = (self.below - q.z).max(q.z - self.above).max(0.0);
+        if along >= cutoff {
+            return along;
+        }
+        let across = (self.outside(q.truncate()) - self.lateral).max(0.0);
         (across * across + along * along).sqrt()
     }
 
     /// Barycentric (v, w) of the point of the flat triangle nearest to `p`.
     pub(crate) fn nearest(&self, p: DVec3) -> DVec2 {
-        let [a, b, c] = self.corners;
-        closest_in_triangle(p, a, b, c)
+        let [b, c] = self.corners;
+        closest_in_triangle(self.local(p).truncate(), DVec2::ZERO, b, c)
     }
 }
 
@@ -110,10 +141,27 @@ fn flat_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
         .unwrap_or(DVec3::Z)
 }
 
+/// Points of the plane or of space.
+pub(crate) trait Point:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<f64, Output = Self>
+{
+    fn dot(self, other: Self) -> f64;
+}
+impl Point for DVec2 {
+    fn dot(self, other: Self) -> f64 {
+        DVec2::dot(self, other)
+    }
+}
+impl Point for DVec3 {
+    fn dot(self, other: Self) -> f64 {
+        DVec3::dot(self, other)
+    }
+}
+
 /// Barycentric (v, w) of the point of triangle (a, b, c) nearest to p, the
 /// point being a + v (b − a) + w (c − a). By Voronoi regions of the corners
 /// and edges; a degenerate triangle gets the nearest point of its sides.
-pub(crate) fn closest_in_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec2 {
+pub(crate) fn closest_in_triangle<P: Point>(p: P, a: P, b: P, c: P) -> DVec2 {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {
@@ -148,17 +196,15 @@ pub(crate) fn closest_in_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVe
     }
     // Degenerate (collinear or non-finite): the nearest of the three sides.
     let side = |from: DVec2, to: DVec2| {
-        let (x0, x1) = (a + from.x * ab + from.y * ac, a + to.x * ab + to.y * ac);
-        let len2 = (x1 - x0).length_squared();
+        let (x0, x1) = (a + ab * from.x + ac * from.y, a + ab * to.x + ac * to.y);
+        let len2 = (x1 - x0).dot(x1 - x0);
         let s = if len2 > 0.0 {
             ((p - x0).dot(x1 - x0) / len2).clamp(0.0, 1.0)
         } else {
             0.0
         };
-        (
-            (x0 + s * (x1 - x0) - p).length_squared(),
-            from + s * (to - from),
-        )
+        let gap = x0 + (x1 - x0) * s - p;
+        (gap.dot(gap), from + s * (to - from))
     };
     [
         side(DVec2::ZERO, DVec2::X),
@@ -263,12 +309,13 @@ mod tests {
         ];
         let bound = CellBound::new(corners, points, 0.0);
         let p = DVec3::new(0.25, 0.25, 1.0);
-        assert!((bound.lower_bound(p) - 0.95).abs() < 1e-15);
+        assert!((bound.lower_bound(p, f64::INFINITY) - 0.95).abs() < 1e-15);
         for q in [DVec3::new(3.0, -2.0, 0.5), DVec3::new(-1.0, 0.4, -0.7), p] {
             for (i, s) in points.iter().enumerate() {
                 for t in &points[i..] {
                     let x = 0.5 * (*s + *t);
-                    assert!(bound.lower_bound(q) <= (x - q).length() + 1e-15);
+                    assert!(bound.lower_bound(q, f64::INFINITY) <= (x - q).length() + 1e-15);
+                    assert!(bound.lower_bound(q, 0.1) <= (x - q).length() + 1e-15);
                 }
             }
         }

@@ -7,12 +7,12 @@
 //! to one, so a patch lies in the convex hull of its support (the control
 //! points of its corners' one-rings, seed 000 §2); after one more step the
 //! same holds for each of its four children, after two for each of its
-//! sixteen grandchildren. So a finest cell's piece lies in the hull of the
-//! twice-refined points around its children's corners — the vertex points of
-//! those six vertices and the edge points of the edges at them — which hugs
-//! the surface far closer than the control points do; a coarser cell's
-//! piece, the union of its finest cells' pieces, lies in the hull of all of
-//! theirs.
+//! sixteen grandchildren. So the piece of a triangle of the net refined
+//! `deep` times lies in the hull of the twice-refined points around its
+//! children's corners — the vertex points of those six vertices and the edge
+//! points of the edges at them — which hugs the surface far closer than the
+//! control points do; a cell's piece, the union of the deepest pieces below
+//! it, lies in the hull of all of theirs.
 
 use super::cell::{cell_at, cell_corners, CellBound};
 use crate::features::Features;
@@ -22,29 +22,30 @@ use crate::topology::Topology;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-/// Patches are cut until the quadtrees would hold more than this many cells
-/// in all (pig: 891 control triangles, cut 3 times: 75 735 cells), and at
-/// least once unless that alone would exceed `CELL_LIMIT` (bunny00: 75 408
-/// control triangles, cut once: 377 040 cells, 45 MB). Finer cells prune
-/// better and start Newton closer, and each solve only answers for one
-/// cell — its distance having one basin there is what the search assumes,
-/// and on a bumpy scan whole patches can hold several.
-const CELL_BUDGET: usize = 1 << 17;
+/// How finely the index cuts: (cell level, support depth). Patches are cut
+/// into cells `level` times — at least once, since on a bumpy scan one
+/// patch can hold two minima of the distance a search must tell apart (each
+/// cell solve answers for one basin) — and the containers are built from
+/// the support of the pieces `depth` ≥ `level` steps down: the deeper, the
+/// tighter (their lateral slack halves per step) and the fewer cells a
+/// query must solve, at four times the build work per step. Depth grows
+/// while the twice-refined support stays under `SUPPORT_BUDGET` triangles
+/// (pig, 891 triangles: cells of level 2, depth 3; bunny00, 75 408: level 1,
+/// depth 1, 377 040 cells, 45 MB); nets too large for one cut to fit
+/// `CELL_LIMIT` cells keep whole patches.
+const SUPPORT_BUDGET: usize = 1 << 20;
 const CELL_LIMIT: usize = 1 << 21;
-const MAX_CELL_LEVEL: u32 = 3;
+const MAX_DEPTH: u32 = 4;
 
-/// Subdivision steps from control triangles to the finest cells.
-fn cell_level(triangles: usize) -> u32 {
-    let cells = |level: u32| (0..=level).map(|k| triangles << (2 * k)).sum::<usize>();
-    let level = (0..=MAX_CELL_LEVEL)
-        .rev()
-        .find(|&l| cells(l) <= CELL_BUDGET)
-        .unwrap_or(0);
-    if level == 0 && cells(1) <= CELL_LIMIT {
-        1
-    } else {
-        level
+fn cutting(triangles: usize) -> (u32, u32) {
+    if 5 * triangles > CELL_LIMIT {
+        return (0, 0);
     }
+    let depth = (1..=MAX_DEPTH)
+        .rev()
+        .find(|&d| triangles << (2 * (d + 2)) <= SUPPORT_BUDGET)
+        .unwrap_or(1);
+    (depth.saturating_sub(1).max(1), depth)
 }
 
 /// What the search needs beyond the surface: built on the first snap.
@@ -104,10 +105,10 @@ impl SnapIndex {
     pub(crate) fn new(surface: &Surface) -> SnapIndex {
         let net = surface.net();
         let nt = net.triangles().len();
-        let level = cell_level(nt);
-        // The net refined level, level + 1 and level + 2 times.
+        let (level, deep) = cutting(nt);
+        // The net refined `deep`, `deep` + 1 and `deep` + 2 times.
         let mut cut: Option<Level> = None;
-        for _ in 0..level {
+        for _ in 0..deep {
             cut = Some(match &cut {
                 None => Level::refine(net.topology(), net.features(), net.points()),
                 Some(l) => Level::refine(&l.topo, &l.features, &l.points),
@@ -133,20 +134,20 @@ impl SnapIndex {
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|(k, c)| {
-                // The finest cells below cell c of level k.
-                let finest = c << (2 * (level - k))..(c + 1) << (2 * (level - k));
+                // The pieces of depth `deep` below cell c of level k.
+                let pieces = c << (2 * (deep - k))..(c + 1) << (2 * (deep - k));
                 let (tri, uv) = cell_corners(c, k);
                 let corners = uv.map(|q| surface.point(tri, q.x, q.y).expect("corners are inside"));
-                let points = finest.flat_map(|f| support.points(f));
+                let points = pieces.flat_map(|f| support.points(f));
                 CellBound::new(corners, points, pad).shifted(surface.displacements_of(tri))
             })
             .collect();
         let boxes: Vec<(DVec3, DVec3)> = (0..nt)
             .into_par_iter()
             .map(|t| {
-                let finest = t << (2 * level)..(t + 1) << (2 * level);
+                let pieces = t << (2 * deep)..(t + 1) << (2 * deep);
                 let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-                for s in finest.flat_map(|f| support.points(f)) {
+                for s in pieces.flat_map(|f| support.points(f)) {
                     lo = lo.min(s);
                     hi = hi.max(s);
                 }
@@ -240,9 +241,9 @@ fn hierarchy(boxes: &[(DVec3, DVec3)]) -> Vec<BoxNode> {
     nodes
 }
 
-/// The twice-refined points whose hull holds each finest cell's piece.
+/// The twice-refined points whose hull holds each deepest piece.
 struct Support<'a> {
-    /// The finest cells' triangulation (the net `level` times refined).
+    /// The deepest pieces' triangulation (the net `deep` times refined).
     topo: &'a Topology,
     /// Vertices of the once-refined net.
     nv1: usize,
@@ -282,13 +283,13 @@ impl<'a> Support<'a> {
         }
     }
 
-    /// For each corner of the cell's four children (its own corners and the
+    /// For each corner of the piece's four children (its own corners and the
     /// once-refined vertices on its sides), the vertex point and the edge
     /// points of the once-refined edges there (some more than once).
-    fn points(&self, cell: usize) -> impl Iterator<Item = DVec3> + '_ {
+    fn points(&self, piece: usize) -> impl Iterator<Item = DVec3> + '_ {
         let nv = self.topo.num_vertices();
-        let corners = self.topo.triangles()[cell].map(|c| c as usize);
-        let mids = self.topo.triangle_edges()[cell].map(|e| nv + e as usize);
+        let corners = self.topo.triangles()[piece].map(|c| c as usize);
+        let mids = self.topo.triangle_edges()[piece].map(|e| nv + e as usize);
         corners.into_iter().chain(mids).flat_map(move |u| {
             let edges = self.vertex_edge_start[u] as usize..self.vertex_edge_start[u + 1] as usize;
             std::iter::once(self.points[u]).chain(

@@ -79,10 +79,9 @@ impl Region {
             let excess = (v + w - 1.0).max(0.0);
             return DVec2::new((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0));
         }
-        let [a, b, c] = self.corners.map(|q| q.extend(0.0));
-        let q = super::cell::closest_in_triangle(uv.extend(0.0), a, b, c);
-        let x = a + q.x * (b - a) + q.y * (c - a);
-        DVec2::new(x.x, x.y)
+        let [a, b, c] = self.corners;
+        let q = super::cell::closest_in_triangle(uv, a, b, c);
+        a + q.x * (b - a) + q.y * (c - a)
     }
 }
 
@@ -292,9 +291,12 @@ fn descend_in(
             if length <= STEP_TOLERANCE {
                 return (uv, e.x, crossing, true);
             }
+            // The step is kept unless it loses more than round-off: its
+            // end is the better stationary point even where the distances
+            // tie to the last bits.
             let t_uv = region.clamp(uv + alpha * step);
             let t_x = chart.point(t_uv.x, t_uv.y).expect("inside");
-            if (t_x - p).length_squared() <= 2.0 * f {
+            if (t_x - p).length_squared() <= 2.0 * f * (1.0 + 1e-12) {
                 return (t_uv, t_x, crossing, true);
             }
             return (uv, e.x, crossing, true);

@@ -97,13 +97,15 @@ impl Surface {
                         }
                     }
                     Content::Patch(t) => {
-                        let b = index.cell(0, t as usize).lower_bound(p);
+                        let b = index.cell(0, t as usize).lower_bound(p, best_distance);
                         push(b.max(bound), Item::Cell(0, t));
                     }
                 },
                 Item::Cell(k, c) if k < index.level => {
                     for child in 4 * c..4 * c + 4 {
-                        let b = index.cell(k + 1, child as usize).lower_bound(p);
+                        let b = index
+                            .cell(k + 1, child as usize)
+                            .lower_bound(p, best_distance);
                         push(b.max(bound), Item::Cell(k + 1, child));
                     }
                 }
