@@ -133,21 +133,21 @@ impl SnapIndex {
             .flat_map(|k| (0..nt << (2 * k)).map(move |c| (k, c)))
             .collect::<Vec<_>>()
             .into_par_iter()
-            .map(|(k, c)| {
+            .map_init(Vec::new, |points, (k, c)| {
                 // The pieces of depth `deep` below cell c of level k.
-                let pieces = c << (2 * (deep - k))..(c + 1) << (2 * (deep - k));
+                support.gather_all(c << (2 * (deep - k))..(c + 1) << (2 * (deep - k)), points);
                 let (tri, uv) = cell_corners(c, k);
                 let corners = uv.map(|q| surface.point(tri, q.x, q.y).expect("corners are inside"));
-                let points = pieces.flat_map(|f| support.points(f));
-                CellBound::new(corners, points, pad).shifted(surface.displacements_of(tri))
+                CellBound::new(corners, points.iter().copied(), pad)
+                    .shifted(surface.displacements_of(tri))
             })
             .collect();
         let boxes: Vec<(DVec3, DVec3)> = (0..nt)
             .into_par_iter()
-            .map(|t| {
-                let pieces = t << (2 * deep)..(t + 1) << (2 * deep);
+            .map_init(Vec::new, |points, t| {
+                support.gather_all(t << (2 * deep)..(t + 1) << (2 * deep), points);
                 let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-                for s in pieces.flat_map(|f| support.points(f)) {
+                for &s in points.iter() {
                     lo = lo.min(s);
                     hi = hi.max(s);
                 }
@@ -283,20 +283,28 @@ impl<'a> Support<'a> {
         }
     }
 
-    /// For each corner of the piece's four children (its own corners and the
-    /// once-refined vertices on its sides), the vertex point and the edge
-    /// points of the once-refined edges there (some more than once).
-    fn points(&self, piece: usize) -> impl Iterator<Item = DVec3> + '_ {
+    /// Appends to `out`, for each corner of the piece's four children (its
+    /// own corners and the once-refined vertices on its sides), the vertex
+    /// point and the edge points of the once-refined edges there (some more
+    /// than once).
+    fn gather(&self, piece: usize, out: &mut Vec<DVec3>) {
         let nv = self.topo.num_vertices();
         let corners = self.topo.triangles()[piece].map(|c| c as usize);
         let mids = self.topo.triangle_edges()[piece].map(|e| nv + e as usize);
-        corners.into_iter().chain(mids).flat_map(move |u| {
+        for u in corners.into_iter().chain(mids) {
+            out.push(self.points[u]);
             let edges = self.vertex_edge_start[u] as usize..self.vertex_edge_start[u + 1] as usize;
-            std::iter::once(self.points[u]).chain(
-                self.vertex_edges[edges]
-                    .iter()
-                    .map(move |&e| self.points[self.nv1 + e as usize]),
-            )
-        })
+            for &e in &self.vertex_edges[edges] {
+                out.push(self.points[self.nv1 + e as usize]);
+            }
+        }
+    }
+
+    /// [`Support::gather`] for a run of pieces, into a cleared `out`.
+    fn gather_all(&self, pieces: std::ops::Range<usize>, out: &mut Vec<DVec3>) {
+        out.clear();
+        for piece in pieces {
+            self.gather(piece, out);
+        }
     }
 }

@@ -111,8 +111,8 @@ impl Surface {
                 }
                 Item::Cell(_, cell) => {
                     let cell = cell as usize;
-                    // A local minimum already found next to this cell is its
-                    // minimum too (one basin at the scale of a cell).
+                    // A local minimum already found in this cell is its
+                    // minimum (one basin per cell).
                     if minima.contains(&cell) {
                         continue;
                     }
