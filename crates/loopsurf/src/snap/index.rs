@@ -59,6 +59,8 @@ pub(crate) struct SnapIndex {
     pub(crate) level_start: Vec<usize>,
     /// Subdivision steps from control triangles to the finest cells.
     pub(crate) level: u32,
+    /// Distances this small are round-off: 1e-14 of the model size.
+    pub(crate) round_off: f64,
 }
 
 /// A node of the patches' hierarchy: an axis-aligned box around the
@@ -162,6 +164,7 @@ impl SnapIndex {
             cells,
             level_start,
             level,
+            round_off: 1e-14 * net.bbox_diagonal(),
         }
     }
 

@@ -81,7 +81,9 @@ impl Surface {
             .into_iter()
             .collect();
         while let Some(Reverse((Bound(bound), item))) = pending.pop() {
-            if bound >= best_distance {
+            // A point on the surface to round-off cannot be beaten: no
+            // distance is below zero.
+            if bound >= best_distance || best_distance <= index.round_off {
                 break;
             }
             let mut push = |bound: f64, item: Item| {
