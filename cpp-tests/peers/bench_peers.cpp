@@ -1,7 +1,8 @@
 // Peer benchmark (built by CMake, not run by ctest): loopsurf against
-// OpenSubdiv Bfr evaluation and against OpenMesh LoopT and OpenSubdiv Far
-// uniform refinement, on the same meshes and points, in one run. Medians of
-// several repetitions; single thread unless noted (run with
+// OpenSubdiv Bfr evaluation, against OpenMesh LoopT and OpenSubdiv Far
+// uniform refinement, and its exact snap against CGAL's AABB-tree closest
+// point on the flat control net, on the same meshes and points, in one run.
+// Medians of several repetitions; single thread unless noted (run with
 // RAYON_NUM_THREADS=1 for a single-thread loopsurf refinement).
 // Usage: bench_peers DATA_DIR
 #include "osd.hpp"
@@ -10,6 +11,11 @@
 #include <opensubdiv/bfr/surface.h>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <chrono>
 #include <functional>
@@ -129,6 +135,71 @@ static void evaluation(const std::string& name, const std::string& path) {
     ls_surface_free(n.surface);
 }
 
+typedef CGAL::Simple_cartesian<double> K;
+typedef std::vector<K::Triangle_3>::const_iterator TriangleIterator;
+typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, TriangleIterator>>> FlatTree;
+
+// The generator and point sets of benches/snap.rs, so both runs see the
+// same queries.
+struct Lcg {
+    uint64_t s;
+    double next() {
+        s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(s >> 11) / double(1ULL << 53);
+    }
+};
+
+static void snapping(const std::string& name, const std::string& path) {
+    Net n = load_net(path, -1);
+    const size_t queries = 2000;
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (size_t i = 0; i < n.nverts(); i++)
+        for (int k = 0; k < 3; k++) lo[k] = std::min(lo[k], n.xyz[3 * i + k]), hi[k] = std::max(hi[k], n.xyz[3 * i + k]);
+    Lcg rng{3};
+    std::vector<double> in_box(3 * queries), near(3 * queries);
+    for (size_t i = 0; i < queries; i++)
+        for (int k = 0; k < 3; k++) in_box[3 * i + k] = lo[k] + (hi[k] - lo[k]) * rng.next();
+    for (size_t i = 0; i < queries; i++) {
+        // Within 1% of the diagonal of a surface point, along its normal.
+        int32_t t = int32_t(rng.next() * double(n.ntris()));
+        double v = rng.next() * 0.5, w = rng.next() * 0.5, r[18];
+        ls_evaluate(n.surface, t, v, w, r);
+        double nx = r[4] * r[8] - r[5] * r[7], ny = r[5] * r[6] - r[3] * r[8], nz = r[3] * r[7] - r[4] * r[6];
+        double len = std::sqrt(nx * nx + ny * ny + nz * nz), s = (rng.next() - 0.5) * 0.02 * n.diagonal / len;
+        near[3 * i] = r[0] + s * nx, near[3 * i + 1] = r[1] + s * ny, near[3 * i + 2] = r[2] + s * nz;
+    }
+    std::vector<K::Triangle_3> flat;
+    auto point = [&](int32_t v) { return K::Point_3(n.xyz[3 * v], n.xyz[3 * v + 1], n.xyz[3 * v + 2]); };
+    for (size_t t = 0; t < n.ntris(); t++) flat.emplace_back(point(n.tris[3 * t]), point(n.tris[3 * t + 1]), point(n.tris[3 * t + 2]));
+    FlatTree tree(flat.begin(), flat.end());
+    tree.accelerate_distance_queries();
+    int32_t tri;
+    double vw[2], x[3], d;
+    ls_snap(n.surface, in_box.data(), &tri, vw, x, &d);  // builds the snap index
+    auto ours = [&](const std::vector<double>& p) {
+        return median_seconds(7, [&] {
+            double acc = 0;
+            for (size_t i = 0; i < queries; i++) {
+                ls_snap(n.surface, &p[3 * i], &tri, vw, x, &d);
+                acc += d;
+            }
+            sink = acc;
+        });
+    };
+    auto cgal = [&](const std::vector<double>& p) {
+        return median_seconds(7, [&] {
+            double acc = 0;
+            for (size_t i = 0; i < queries; i++) acc += tree.closest_point(K::Point_3(p[3 * i], p[3 * i + 1], p[3 * i + 2])).x();
+            sink = acc;
+        });
+    };
+    double ours_a = ours(in_box), cgal_a = cgal(in_box), ours_b = ours(near), cgal_b = cgal(near);
+    double k = queries / 1e3;
+    std::printf("| snap %s | (a) in the box: loopsurf exact %.0f k/s, CGAL AABB on the flat net %.0f k/s (%.2f×) | (b) within 1%%: %.0f vs %.0f k/s (%.2f×) |\n",
+                name.c_str(), k / ours_a, k / cgal_a, cgal_a / ours_a, k / ours_b, k / cgal_b, cgal_b / ours_b);
+    ls_surface_free(n.surface);
+}
+
 static void refinement(const std::string& path, int levels) {
     Net n = load_net(path, -1);
     double ours = median_seconds(7, [&] {
@@ -170,5 +241,7 @@ int main(int argc, char** argv) {
     evaluation("pig", dir + "/pig.off");
     evaluation("bunny00", dir + "/bunny00.off");
     refinement(dir + "/bunny00.off", 3);
+    snapping("pig", dir + "/pig.off");
+    snapping("bunny00", dir + "/bunny00.off");
     return 0;
 }
