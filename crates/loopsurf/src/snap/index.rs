@@ -31,7 +31,7 @@ use rayon::prelude::*;
 /// query must solve, at four times the build work per step. Depth grows
 /// while the twice-refined support stays under `SUPPORT_BUDGET` triangles
 /// (pig, 891 triangles: cells of level 2, depth 3; bunny00, 75 408: level 1,
-/// depth 1, 377 040 cells, 45 MB); nets too large for one cut to fit
+/// depth 1, 377 040 cells, 57 MB); nets too large for one cut to fit
 /// `CELL_LIMIT` cells keep whole patches.
 const SUPPORT_BUDGET: usize = 1 << 20;
 const CELL_LIMIT: usize = 1 << 21;
