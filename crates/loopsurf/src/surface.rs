@@ -172,10 +172,11 @@ impl Surface {
         &self.net
     }
 
-    /// Bytes the surface holds beyond its control net (per-triangle tables
-    /// and the shared special-vertex configurations).
+    /// Bytes the surface holds beyond its control net (per-triangle tables,
+    /// the shared special-vertex configurations, and the snapping index
+    /// once a snap has built it).
     pub fn memory_bytes(&self) -> usize {
-        self.evaluator.memory_bytes()
+        self.evaluator.memory_bytes() + self.snap_index.get().map_or(0, SnapIndex::memory_bytes)
     }
 
     /// Number of distinct special-vertex configurations precomputed.

@@ -381,3 +381,17 @@ fn non_finite_points_and_bad_hints_are_errors() {
     assert!(surface.snap_near(DVec3::ZERO, 99999, 0.1, 0.1).is_err());
     assert!(surface.snap_near(DVec3::ZERO, 0, 0.9, 0.9).is_err());
 }
+
+#[test]
+fn the_index_is_counted_once_built() {
+    let net = example("viking", Some(30.0));
+    let surface = Surface::new(&net).unwrap();
+    let before = surface.memory_bytes();
+    surface.closest_point(DVec3::ZERO).unwrap();
+    let after = surface.memory_bytes();
+    // At least one container (~150 bytes) per control triangle.
+    assert!(
+        after >= before + 100 * net.triangles().len(),
+        "{before} -> {after}"
+    );
+}

@@ -29,10 +29,11 @@ use rayon::prelude::*;
 /// the support of the pieces `depth` ≥ `level` steps down: the deeper, the
 /// tighter (their lateral slack halves per step) and the fewer cells a
 /// query must solve, at four times the build work per step. Depth grows
-/// while the twice-refined support stays under `SUPPORT_BUDGET` triangles
-/// (pig, 891 triangles: cells of level 2, depth 3; bunny00, 75 408: level 1,
-/// depth 1, 377 040 cells, 57 MB); nets too large for one cut to fit
-/// `CELL_LIMIT` cells keep whole patches.
+/// while the twice-refined support stays under `SUPPORT_BUDGET` triangles,
+/// and cells sit one level above it (pig, 891 triangles: depth 3, cells of
+/// level 2; bunny00, 75 408: depth 1, level 1, 377 040 cells, 67 MB with the
+/// hierarchy). Nets too large for one cut to fit `CELL_LIMIT` cells keep
+/// whole patches.
 const SUPPORT_BUDGET: usize = 1 << 20;
 const CELL_LIMIT: usize = 1 << 21;
 const MAX_DEPTH: u32 = 4;
@@ -166,6 +167,14 @@ impl SnapIndex {
             level,
             round_off: 1e-14 * net.bbox_diagonal(),
         }
+    }
+
+    /// Bytes held.
+    pub(crate) fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.nodes.capacity() * size_of::<BoxNode>()
+            + self.cells.capacity() * size_of::<CellBound>()
+            + self.level_start.capacity() * size_of::<usize>()
     }
 
     /// The container of cell `c` of level `k`.
