@@ -1,14 +1,16 @@
-//! The local solve: the closest point of one triangle's patch (or, walking
-//! across edges, of the surface near a start) by projected Newton on
-//! f(v, w) = ½ |X(v, w) − p|² over the parameter triangle.
+//! The local solve: the closest point of one triangle's patch, of one cell
+//! of it, or (walking across edges and around vertices) of the surface near
+//! a start, by projected Newton on f(v, w) = ½ |X(v, w) − p|².
 //!
 //! The full Hessian (with the curvature terms r · Xvv …) is used where it
 //! is positive definite, so convergence near a minimiser is quadratic; where
-//! it is not (far points, concave regions) the Gauss–Newton matrix JᵀJ
-//! keeps every step a descent step. Steps are clipped to the triangle; on
-//! an edge or at a corner whose constraint is binding, the step is restricted
-//! to the edge, so minima on boundaries, hard edges and corners are found as
-//! exactly as interior ones.
+//! it is not (far points, concave regions) it is shifted by a multiple of
+//! JᵀJ until it is, which keeps every step a descent step without ignoring
+//! the curvature. Steps are clipped to the region; on a side or at a corner
+//! whose constraint is binding, the step is restricted to the side, so minima
+//! on boundaries, hard edges and corners are found as exactly as interior
+//! ones. At irregular vertices, where the parametrisation is singular,
+//! stalled steps are stretched and the walk goes on around the vertex.
 
 use crate::surface::{Chart, Evaluation, Surface};
 use glam::{DVec2, DVec3};
@@ -103,10 +105,10 @@ fn eval_at(chart: &mut Chart, uv: DVec2) -> Evaluation {
 
 /// Minimises the distance to `p` starting from (tri, v, w): a local
 /// minimum of the distance over the surface, and whether the last solve
-/// converged. A minimum on an interior edge
-/// whose descent continues across it moves into the neighbouring triangle;
-/// the walk ends where a hop gains nothing (a minimum on the edge itself, as
-/// on a crease) or at a boundary.
+/// converged. A minimum on an interior edge whose descent continues across
+/// it moves into the neighbouring triangle, one at a corner into the
+/// steepest triangle of the vertex's fan; the walk ends where a hop gains
+/// nothing (a minimum on the edge itself, as on a crease) or at a boundary.
 pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -> (Snap, bool) {
     let (mut tri, mut uv) = (tri, DVec2::new(v, w));
     let mut best: Option<(Snap, bool)> = None;
