@@ -150,6 +150,12 @@ impl Surface {
         self.snap_index.get_or_init(|| SnapIndex::new(self))
     }
 
+    /// The evaluator behind this surface (the approximating surface of its
+    /// net, before any displacement).
+    pub(crate) fn evaluator(&self) -> &Evaluator {
+        &self.evaluator
+    }
+
     /// The displacements of triangle `tri`'s corners (zero unless in
     /// displacement mode).
     pub(crate) fn displacements_of(&self, tri: usize) -> [DVec3; 3] {
@@ -215,7 +221,7 @@ impl Surface {
     }
 
     /// Adds the displacement field of triangle `tri` to a position.
-    fn displaced_point(&self, tri: usize, v: f64, w: f64, x: DVec3) -> DVec3 {
+    pub(crate) fn displaced_point(&self, tri: usize, v: f64, w: f64, x: DVec3) -> DVec3 {
         if self.displacement.is_empty() {
             return x;
         }

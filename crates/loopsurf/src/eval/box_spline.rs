@@ -62,6 +62,76 @@ pub fn coefficient_rows(control_rows: &[f64], n: usize) -> Vec<f64> {
     out
 }
 
+/// Exponents (of v, of w) of the monomials of eq. (5), in coefficient order.
+const EXPONENTS: [(usize, usize); 15] = [
+    (0, 0),
+    (1, 0),
+    (0, 1),
+    (2, 0),
+    (1, 1),
+    (0, 2),
+    (3, 0),
+    (2, 1),
+    (1, 2),
+    (0, 3),
+    (4, 0),
+    (3, 1),
+    (2, 2),
+    (1, 3),
+    (0, 4),
+];
+
+/// Monomial coefficients to Bernstein–Bézier coefficients on the patch's
+/// own triangle (v, w ≥ 0, v + w ≤ 1): vᵃwᵇ = λ1ᵃ λ2ᵇ (λ0 + λ1 + λ2)⁴⁻ᵃ⁻ᵇ,
+/// so its coefficient on λ0ⁱλ1ʲλ2ᵏ is a ratio of multinomials. Rows follow
+/// the snap search's Bézier order: coefficient (i, j, k) (powers of
+/// 1 − v − w, v, w) at index 5k − k(k − 1)/2 + j.
+fn to_bernstein() -> &'static [[f64; 15]; 15] {
+    static MATRIX: std::sync::OnceLock<[[f64; 15]; 15]> = std::sync::OnceLock::new();
+    MATRIX.get_or_init(|| {
+        let f = |n: usize| (1..=n).product::<usize>() as f64;
+        let multinomial = |i: usize, j: usize, k: usize| f(i + j + k) / (f(i) * f(j) * f(k));
+        let mut m = [[0.0; 15]; 15];
+        let mut row = 0;
+        for k in 0..=4 {
+            for j in 0..=4 - k {
+                let i = 4 - j - k;
+                for (col, &(a, b)) in EXPONENTS.iter().enumerate() {
+                    if j >= a && k >= b {
+                        m[row][col] = multinomial(i, j - a, k - b) / multinomial(i, j, k);
+                    }
+                }
+                row += 1;
+            }
+        }
+        m
+    })
+}
+
+/// The patch given by [`coefficients`] in Bernstein–Bézier form on its own
+/// triangle (see [`to_bernstein`] for the order).
+pub fn bernstein(c: &[DVec3; 15]) -> [DVec3; 15] {
+    let m = to_bernstein();
+    std::array::from_fn(|r| m[r].iter().zip(c).map(|(w, x)| *w * *x).sum())
+}
+
+/// [`bernstein`] for coefficients that are linear combinations of `n`
+/// points: 15 rows of n weights in, 15 rows out.
+pub fn bernstein_rows(rows: &[f64], n: usize) -> Vec<f64> {
+    let m = to_bernstein();
+    let mut out = vec![0.0; 15 * n];
+    for (r, weights) in m.iter().enumerate() {
+        for (j, &w) in weights.iter().enumerate() {
+            if w != 0.0 {
+                for col in 0..n {
+                    out[r * n + col] += w * rows[j * n + col];
+                }
+            }
+        }
+    }
+    out
+}
+
 /// X alone at (v, w) of a patch given by [`coefficients`]: a sixth of the
 /// work of [`eval_coefficients`], for callers that only place points.
 pub fn eval_point(c: &[DVec3; 15], v: f64, w: f64) -> DVec3 {

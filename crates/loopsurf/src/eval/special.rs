@@ -52,6 +52,8 @@ pub struct SpecialPatch {
     /// The regular patches of the first ring (children 1, 2, 3 of (c, p, q))
     /// as polynomial coefficients over the neighbourhood, 15 × size each.
     band: [Vec<f64>; 3],
+    /// The same patches in Bernstein–Bézier form on their own triangles.
+    band_bezier: [Vec<f64>; 3],
     /// Tangent masks of the sector at c (see [`sector_tangents`]).
     tangents: Option<[Vec<f64>; 2]>,
 }
@@ -146,8 +148,8 @@ impl SpecialPatch {
         cell: Cell,
     ) -> ([DVec3; 15], DVec3) {
         let n = self.size;
-        let band = &self.band[cell.k - 1];
         if cell.rings == 0 {
+            let band = &self.band[cell.k - 1];
             // In the first ring the band rows apply to the points themselves.
             let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
                 band[r * n..(r + 1) * n]
@@ -175,7 +177,29 @@ impl SpecialPatch {
         for (out, &i) in y.iter_mut().zip(around) {
             *out = points[i as usize] - limit;
         }
-        fn apply<'a>(power: &[f64], n: usize, y: &mut &'a mut [DVec3], next: &mut &'a mut [DVec3]) {
+        self.push_down(&mut y, &mut next, cell.rings);
+        (self.band_coefficients(cell.k, y), limit)
+    }
+
+    /// The box-spline coefficients of sub-triangle `k` (1 to 3) of a ring
+    /// from that ring's neighbourhood (as offsets from the limit point, the
+    /// coefficients then being offsets too).
+    pub fn band_coefficients(&self, k: usize, ring: &[DVec3]) -> [DVec3; 15] {
+        apply_rows(&self.band[k - 1], ring)
+    }
+
+    /// [`SpecialPatch::band_coefficients`] in Bernstein–Bézier form on the
+    /// sub-triangle ([`box_spline::bernstein`]).
+    pub fn band_bezier(&self, k: usize, ring: &[DVec3]) -> [DVec3; 15] {
+        apply_rows(&self.band_bezier[k - 1], ring)
+    }
+
+    /// Pushes offsets from the limit point `rings` levels down with the
+    /// cached powers of D: the largest one as often as needed, then the
+    /// bits. `y` holds the result, `next` is scratch of the same length.
+    fn push_down<'a>(&self, y: &mut &'a mut [DVec3], next: &mut &'a mut [DVec3], rings: usize) {
+        let n = self.size;
+        let apply = |power: &[f64], y: &mut &'a mut [DVec3], next: &mut &'a mut [DVec3]| {
             for (i, out) in next.iter_mut().enumerate() {
                 *out = power[i * n..(i + 1) * n]
                     .iter()
@@ -184,27 +208,53 @@ impl SpecialPatch {
                     .sum();
             }
             std::mem::swap(y, next);
-        }
-        // The largest cached power as often as needed, then the bits.
+        };
         let top = 1usize << (POWERS - 1);
-        let mut remaining = cell.rings;
+        let mut remaining = rings;
         while remaining >= 2 * top {
-            apply(&self.powers[POWERS - 1], n, &mut y, &mut next);
+            apply(&self.powers[POWERS - 1], y, next);
             remaining -= top;
         }
         for (j, power) in self.powers.iter().enumerate() {
             if remaining >> j & 1 == 1 {
-                apply(power, n, &mut y, &mut next);
+                apply(power, y, next);
             }
         }
-        let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
-            band[r * n..(r + 1) * n]
-                .iter()
-                .zip(y.iter())
-                .map(|(w, p)| *w * *p)
-                .sum()
-        });
-        (coefficients, limit)
+    }
+
+    /// The neighbourhood `rings` subdivision steps down (the corner
+    /// triangle of that ring and the rings of its corners), as offsets from
+    /// the limit point of c, with that limit point. All Loop masks being
+    /// non-negative, the piece of surface over the ring's corner triangle
+    /// lies in the convex hull of these points: the snap search bounds the
+    /// region around c with them.
+    pub fn ring_offsets(
+        &self,
+        points: &[DVec3],
+        around: &[u32],
+        rings: usize,
+    ) -> (Vec<DVec3>, DVec3) {
+        let limit = self.limit_point(points, around);
+        let mut a: Vec<DVec3> = around.iter().map(|&i| points[i as usize] - limit).collect();
+        let mut b = vec![DVec3::ZERO; a.len()];
+        let (mut y, mut next) = (&mut a[..], &mut b[..]);
+        self.push_down(&mut y, &mut next, rings);
+        (y.to_vec(), limit)
+    }
+
+    /// [`SpecialPatch::ring_offsets`] one ring further down.
+    pub fn next_ring(&self, offsets: &[DVec3]) -> Vec<DVec3> {
+        let n = self.size;
+        let d = &self.powers[0];
+        (0..n)
+            .map(|i| {
+                d[i * n..(i + 1) * n]
+                    .iter()
+                    .zip(offsets)
+                    .map(|(w, p)| *w * *p)
+                    .sum()
+            })
+            .collect()
     }
 
     /// One subdivision step of the neighbourhood (for tests).
@@ -230,6 +280,7 @@ impl SpecialPatch {
         let floats = self.limit.len()
             + self.powers.iter().map(Vec::len).sum::<usize>()
             + self.band.iter().map(Vec::len).sum::<usize>()
+            + self.band_bezier.iter().map(Vec::len).sum::<usize>()
             + self.tangents.iter().flatten().map(Vec::len).sum::<usize>();
         std::mem::size_of::<Self>() + floats * std::mem::size_of::<f64>()
     }
@@ -254,6 +305,18 @@ impl SpecialPatch {
             .map(|(w, &i)| *w * points[i as usize])
             .sum()
     }
+}
+
+/// 15 rows of weights applied to the points of a neighbourhood.
+fn apply_rows(rows: &[f64], points: &[DVec3]) -> [DVec3; 15] {
+    let n = points.len();
+    std::array::from_fn(|r| {
+        rows[r * n..(r + 1) * n]
+            .iter()
+            .zip(points)
+            .map(|(w, p)| *w * *p)
+            .sum()
+    })
 }
 
 /// Where a point of a special corner triangle falls in the rings around
@@ -508,6 +571,7 @@ impl Key {
                 .collect::<Vec<f64>>()
         });
         let band = band.map(|rows| box_spline::coefficient_rows(&rows, size));
+        let band_bezier = std::array::from_fn(|k| box_spline::bernstein_rows(&band[k], size));
         // Limit mask of c: the left eigenvector of A for eigenvalue 1.
         let limit = restrict(&limit_rows[0]);
         let mut deflated = a;
@@ -536,6 +600,7 @@ impl Key {
             limit,
             powers,
             band,
+            band_bezier,
             tangents,
         }
     }

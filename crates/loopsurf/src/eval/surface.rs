@@ -158,6 +158,67 @@ impl Evaluator {
         self.configurations
     }
 
+    /// The special configuration of level-1 child `child` (0 to 2: the one
+    /// at corner `child` of control triangle `tri`) with its neighbourhood
+    /// in [`Evaluator::refined_points`], or `None` for a regular child.
+    pub fn special_corner(&self, tri: usize, child: usize) -> Option<(&SpecialPatch, &[u32])> {
+        match self.patches[4 * tri + child] {
+            Patch::Regular(_) => None,
+            Patch::Special(i) => {
+                let s = &self.special[i as usize];
+                Some((&s.patch, &s.points))
+            }
+        }
+    }
+
+    /// The polynomial piece of the surface holding (v, w) of `tri` (which
+    /// must not be a special vertex) in Bernstein–Bézier form on its own
+    /// triangle ([`box_spline::bernstein`]), with the map from the control
+    /// triangle's (v, w) to that triangle's parameters.
+    pub fn bezier_at(&self, tri: usize, v: f64, w: f64) -> Option<([DVec3; 15], Affine)> {
+        let (k, to_child) = child_containing(v, w);
+        match self.patches[4 * tri + k] {
+            Patch::Regular(i) => Some((box_spline::bernstein(&self.regular[i as usize]), to_child)),
+            Patch::Special(i) => {
+                let s = &self.special[i as usize];
+                let to_corner = rotation(s.corner as usize).after(&to_child);
+                let (a, b) = to_corner.apply(v, w);
+                let cell = Cell::locate(a, b)?;
+                let (c, offset) = s.patch.cell_coefficients(&self.points, &s.points, cell);
+                let bezier = box_spline::bernstein(&c).map(|x| x + offset);
+                Some((bezier, cell_map(cell).after(&to_corner)))
+            }
+        }
+    }
+
+    /// [`Evaluator::bezier_at`] for a point of a ring around the special
+    /// corner of child `child` of `tri`, from that ring's neighbourhood
+    /// (`ring`, offsets from the vertex's limit `limit`, as
+    /// [`SpecialPatch::ring_offsets`] gives them): skips pushing the
+    /// neighbourhood down, which a caller walking the rings has done.
+    pub fn ring_bezier(
+        &self,
+        tri: usize,
+        child: usize,
+        (ring, limit): (&[DVec3], DVec3),
+        (v, w): (f64, f64),
+    ) -> Option<([DVec3; 15], Affine)> {
+        let Patch::Special(i) = self.patches[4 * tri + child] else {
+            return None;
+        };
+        let s = &self.special[i as usize];
+        let to_corner = rotation(s.corner as usize).after(&super::affine::child(child));
+        let (a, b) = to_corner.apply(v, w);
+        let cell = Cell::locate(a, b)?;
+        let bezier = s.patch.band_bezier(cell.k, ring).map(|x| x + limit);
+        Some((bezier, cell_map(cell).after(&to_corner)))
+    }
+
+    /// The positions of the once-refined net.
+    pub fn refined_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
     /// X alone at (v, w) of control triangle `tri`: the same bits as
     /// `eval(..)[0]` (or the vertex's limit), at a fraction of the cost on
     /// regular triangles.
@@ -326,6 +387,15 @@ impl<'a> ChartEvaluator<'a> {
             }
         }
     }
+}
+
+/// The map from a special corner's (s, t) to the parameters of `cell`.
+fn cell_map(cell: Cell) -> Affine {
+    let scale = (cell.rings as f64).exp2();
+    super::affine::child(cell.k).after(&Affine {
+        m: [[scale, 0.0], [0.0, scale]],
+        b: [0.0, 0.0],
+    })
 }
 
 /// An evaluation that landed exactly on a special vertex.

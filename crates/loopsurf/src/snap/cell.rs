@@ -55,10 +55,10 @@ impl CellBound {
         };
         bound.corners = [b, c].map(|x| bound.local(x).truncate());
         for s in points {
-            let (lateral, height) = bound.offsets(s);
-            bound.lateral = bound.lateral.max(lateral);
-            bound.below = bound.below.min(height);
-            bound.above = bound.above.max(height);
+            let q = bound.local(s);
+            bound.lateral = bound.lateral.max(bound.outside(q.truncate()));
+            bound.below = bound.below.min(q.z);
+            bound.above = bound.above.max(q.z);
         }
         bound.lateral += pad;
         bound.below -= pad;
@@ -99,15 +99,14 @@ impl CellBound {
     /// Distance of an in-plane point from the flat triangle.
     fn outside(&self, q: DVec2) -> f64 {
         let [b, c] = self.corners;
+        // Inside (the usual case for the points a container is made of):
+        // on the inner side of all three sides, whatever the orientation.
+        let (s0, s1, s2) = (b.perp_dot(q), (c - b).perp_dot(q - b), (-c).perp_dot(q - c));
+        if (s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) || (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0) {
+            return 0.0;
+        }
         let t = closest_in_triangle(q, DVec2::ZERO, b, c);
         (q - (t.x * b + t.y * c)).length()
-    }
-
-    /// Distance of x from the flat triangle within its plane, and height of
-    /// x above that plane.
-    fn offsets(&self, x: DVec3) -> (f64, f64) {
-        let q = self.local(x);
-        (self.outside(q.truncate()), q.z)
     }
 
     /// A lower bound on the distance from `p` to the cell's piece of
@@ -240,7 +239,8 @@ pub(crate) fn cell_corners(cell: usize, level: u32) -> (usize, [DVec2; 3]) {
 
 /// The cell of level `level` holding (v, w) of control triangle `tri` (on
 /// a side shared by two cells, either).
-pub(crate) fn cell_at(tri: usize, v: f64, w: f64, level: u32) -> usize {
+#[cfg(test)]
+fn cell_at(tri: usize, v: f64, w: f64, level: u32) -> usize {
     let (mut cell, mut s, mut t) = (tri, v, w);
     for _ in 0..level {
         let (child, s1, t1) = if s + t <= 0.5 {

@@ -14,7 +14,7 @@
 //! control points do; a cell's piece, the union of the deepest pieces below
 //! it, lies in the hull of all of theirs.
 
-use super::cell::{cell_at, cell_corners, CellBound};
+use super::cell::{cell_corners, CellBound};
 use crate::features::Features;
 use crate::refine::subdivide_points;
 use crate::surface::Surface;
@@ -60,8 +60,12 @@ pub(crate) struct SnapIndex {
     pub(crate) level_start: Vec<usize>,
     /// Subdivision steps from control triangles to the finest cells.
     pub(crate) level: u32,
-    /// Distances this small are round-off: 1e-14 of the model size.
-    pub(crate) round_off: f64,
+    /// The bounding-box diagonal of the net.
+    pub(crate) diagonal: f64,
+    /// The round-off allowance of the pieces below the cells: their Bézier
+    /// coefficients are interpolated from evaluated points, each good to a
+    /// few units in the last place of the coordinates.
+    pub(crate) piece_pad: f64,
 }
 
 /// A node of the patches' hierarchy: an axis-aligned box around the
@@ -165,7 +169,8 @@ impl SnapIndex {
             cells,
             level_start,
             level,
-            round_off: 1e-14 * net.bbox_diagonal(),
+            diagonal: net.bbox_diagonal(),
+            piece_pad: 1e-14 * (net.bbox_diagonal() + magnitude(net.points())),
         }
     }
 
@@ -195,16 +200,14 @@ impl SnapIndex {
         let uv = a + q.x * (b - a) + q.y * (c - a);
         (tri, 0.95 * uv + 0.05 * (a + b + c) / 3.0)
     }
+}
 
-    /// The parameters of finest cell `cell`'s corners in its control triangle.
-    pub(crate) fn cell_corners(&self, cell: usize) -> [DVec2; 3] {
-        cell_corners(cell, self.level).1
-    }
-
-    /// The finest cell holding (tri, v, w).
-    pub(crate) fn cell_at(&self, tri: usize, v: f64, w: f64) -> usize {
-        cell_at(tri, v, w, self.level)
-    }
+/// The largest absolute coordinate of the points.
+fn magnitude(points: &[DVec3]) -> f64 {
+    points
+        .iter()
+        .map(|x| x.abs().max_element())
+        .fold(0.0, f64::max)
 }
 
 /// A binary hierarchy of the patches' boxes, split at the median of the

@@ -27,6 +27,11 @@ pub struct Snap {
     pub point: DVec3,
     /// Its distance to the query point.
     pub distance: f64,
+    /// A proven lower bound on the distance from the query point to the
+    /// whole surface: `distance - lower_bound` is how far from the global
+    /// minimum the answer can be at most. Global snaps certify it to their
+    /// tolerance; a local projection proves nothing and sets it to 0.
+    pub lower_bound: f64,
 }
 
 const MAX_ITERATIONS: usize = 60;
@@ -120,6 +125,7 @@ pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -
             w: end.y,
             point: x,
             distance: (x - p).length(),
+            lower_bound: 0.0,
         };
         if best.is_some_and(|(b, _)| b.distance <= here.distance) {
             break;
@@ -160,6 +166,7 @@ pub(crate) fn descend_within(
         w: end.y,
         point: x,
         distance: (x - p).length(),
+        lower_bound: 0.0,
     };
     (snap, converged)
 }

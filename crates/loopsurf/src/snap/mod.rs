@@ -1,49 +1,80 @@
 //! Snapping: the closest point of the limit surface to any xyz — the
-//! global minimum of the distance, not a local one.
+//! global minimum of the distance, certified by a proven lower bound.
 //!
 //! Branch and bound, best first. The index ([`index`]) is a box hierarchy
 //! over the control triangles' patches and, below each patch, a quadtree of
-//! cells (the pieces its subdivided triangles cover), every node with a
-//! convex container of its piece of surface ([`cell`]). Nodes wait in a heap
-//! keyed by a lower bound on the distance to what they hold — box distance,
-//! then container distance — and are opened in that order. The first finest
-//! cell reached gets a projected-Newton solve ([`local`]) that walks across
-//! triangles to a local minimum of the surface; every later cell whose
-//! bound is still below the best distance gets a solve confined to the cell,
-//! and only if that beats the best does it walk on. The search stops when
-//! no bound is below the best distance.
+//! cells, every node with a convex container of its piece of surface
+//! ([`cell`]). Below the index's finest cells the search goes on in pieces
+//! ([`piece`]): dyadic triangles in one polynomial of the surface, held in
+//! Bézier form, or the corner regions of special vertices. Everything waits
+//! in one heap keyed by a lower bound on the distance to what it holds, and
+//! is opened in that order.
 //!
-//! What is proven and what is not: the pruning is rigorous, so every cell
-//! that could hold a nearer point is solved. Each solve finds a local
-//! minimum of the distance over its cell (Newton with the full Hessian,
-//! shifted where it is indefinite, steps confined to the cell) — the cell's
-//! minimum whenever the distance has one basin there. Cells are small (a
-//! patch cut 1–3 times), so that is a far weaker assumption than one basin
-//! per patch, which the pig's concave folds and the bunny's scan bumps
-//! break for points within 1% of the model size. The tests compare with a
-//! dense brute-force reference on CGAL and synthetic meshes.
+//! A piece is closed — it cannot hold a point nearer than the best found by
+//! more than the tolerance — in one of two ways. Its container's bound
+//! reaches the best distance less the tolerance; or the squared distance is
+//! proven convex over it ([`certify`]), so that the piece has one minimum,
+//! found by a confined Newton solve ([`local`]) and bounded from below to
+//! round-off. Any other piece is split, and its children's containers are
+//! tighter (to second order in their size). Nothing is assumed about the
+//! number of minima: constrained minima on hard edges, corners and
+//! boundaries are answers like any other, and next to special vertices,
+//! where the parametrisation is singular, the corner regions shrink
+//! geometrically until their bounds close them.
+//!
+//! The certificate is the smallest bound of all that was closed; it goes
+//! out with the answer as [`Snap::lower_bound`]. Should a query need more
+//! than [`MAX_SPLITS`] splits (a point at the focus of a sphere, where a
+//! whole region is nearest), the search stops and reports the weaker bound
+//! it proved.
 
+mod bezier;
 mod cell;
+mod certify;
 mod index;
 mod local;
+mod piece;
+mod project;
 
 use index::Content;
 pub(crate) use index::SnapIndex;
 pub use local::Snap;
+use piece::{Piece, Shape};
 
 use crate::error::{Error, Result};
 use crate::surface::Surface;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
+/// The default certificate tolerance, relative to the bounding-box
+/// diagonal: the answer is within this of the global minimum, proven.
+pub const DEFAULT_TOLERANCE: f64 = 1e-12;
+
+/// Pieces split per query before the search gives up on the tolerance.
+pub const MAX_SPLITS: usize = 4096;
+
+/// Pieces deeper than this are closed by their container: they are far
+/// below the resolution of doubles.
+const MAX_LEVEL: u32 = 60;
+
 impl Surface {
     /// The point of the surface nearest to `p` (the global minimum of the
-    /// distance), with its triangle and parameters. Where several points are
-    /// equally near, one of them.
+    /// distance), with its triangle and parameters and a proven lower bound
+    /// on the distance within [`DEFAULT_TOLERANCE`] × diagonal of it. Where
+    /// several points are equally near, one of them.
     pub fn closest_point(&self, p: DVec3) -> Result<Snap> {
+        self.closest_point_within(p, DEFAULT_TOLERANCE)
+    }
+
+    /// [`Surface::closest_point`] with a certificate tolerance of
+    /// `tolerance` × diagonal: the search stops once no region it has not
+    /// closed could hold a point nearer by more than that. Looser is
+    /// faster.
+    pub fn closest_point_within(&self, p: DVec3, tolerance: f64) -> Result<Snap> {
         check_point(p)?;
-        Ok(self.search(p, None))
+        check_tolerance(tolerance)?;
+        Ok(self.search(p, None, tolerance))
     }
 
     /// [`Surface::closest_point`] starting from a point known to be near
@@ -52,106 +83,243 @@ impl Surface {
     /// with that distance as its bound — usually only confirming it.
     pub fn snap_near(&self, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
         check_point(p)?;
-        // Validates the hint (and clamps round-off) like any query.
+        let (v, w) = self.checked_guess(tri, v, w)?;
+        let seed = local::descend(self, p, tri, v, w);
+        Ok(self.search(p, Some(seed.0), DEFAULT_TOLERANCE))
+    }
+
+    /// A guess (tri, v, w), validated like any query and with round-off
+    /// outside the triangle clamped.
+    pub(crate) fn checked_guess(&self, tri: usize, v: f64, w: f64) -> Result<(f64, f64)> {
         self.eval(tri, v, w)?;
         let (v, w) = (v.max(0.0), w.max(0.0));
-        let (v, w) = if v + w > 1.0 {
+        Ok(if v + w > 1.0 {
             (v / (v + w), w / (v + w))
         } else {
             (v, w)
-        };
-        let seed = local::descend(self, p, tri, v, w);
-        Ok(self.search(p, Some(seed)))
+        })
     }
 
     /// Best-first branch and bound from an optional first candidate.
-    /// The seed comes with whether its solve converged: only a converged
-    /// local minimum stands for its cell.
-    fn search(&self, p: DVec3, seed: Option<(Snap, bool)>) -> Snap {
+    fn search(&self, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Snap {
         let index = self.snap_index();
-        let mut best = seed.map(|(s, _)| s);
-        let mut best_distance = best.map_or(f64::INFINITY, |b| b.distance);
-        // Nodes to open with a lower bound on the distance to what they hold.
-        let mut pending: BinaryHeap<Reverse<(Bound, Item)>> = BinaryHeap::with_capacity(64);
-        pending.push(Reverse((Bound(index.nodes[0].distance(p)), Item::Node(0))));
-        // The finest cells of the local minima found so far: a handful.
-        let mut minima: Vec<usize> = seed
-            .filter(|&(_, converged)| converged)
-            .map(|(s, _)| index.cell_at(s.tri, s.v, s.w))
-            .into_iter()
-            .collect();
-        while let Some(Reverse((Bound(bound), item))) = pending.pop() {
-            // A point on the surface to round-off cannot be beaten: no
-            // distance is below zero.
-            if bound >= best_distance || best_distance <= index.round_off {
+        let mut search = Search {
+            surface: self,
+            p,
+            // A little tighter: near 1e-12 of the diagonal the round-off of
+            // the distances themselves (1e-16 of their size) must not let
+            // the gap exceed what was asked for.
+            tolerance: tolerance * index.diagonal * 0.99,
+            pad: index.piece_pad,
+            best: seed,
+            best_distance: seed.map_or(f64::INFINITY, |b| b.distance),
+            closed: f64::INFINITY,
+            pending: BinaryHeap::with_capacity(64),
+            pieces: Vec::new(),
+            splits: 0,
+        };
+        search.offer(index.nodes[0].distance(p), Item::Node(0));
+        while let Some(Reverse((Bound(bound), item))) = search.pending.pop() {
+            if bound >= search.best_distance - search.tolerance || search.splits > MAX_SPLITS {
+                // Nothing left is below this bound.
+                search.close(bound);
                 break;
             }
-            let mut push = |bound: f64, item: Item| {
-                if bound < best_distance {
-                    pending.push(Reverse((Bound(bound), item)));
-                }
-            };
             match item {
                 Item::Node(i) => match index.nodes[i as usize].content {
                     Content::Children(l, r) => {
                         for c in [l, r] {
-                            push(index.nodes[c as usize].distance(p), Item::Node(c));
+                            search.offer(index.nodes[c as usize].distance(p), Item::Node(c));
                         }
                     }
                     Content::Patch(t) => {
-                        let b = index.cell(0, t as usize).lower_bound(p, best_distance);
-                        push(b.max(bound), Item::Cell(0, t));
+                        let b = index
+                            .cell(0, t as usize)
+                            .lower_bound(p, search.best_distance);
+                        search.offer(b.max(bound), Item::Cell(0, t));
                     }
                 },
                 Item::Cell(k, c) if k < index.level => {
                     for child in 4 * c..4 * c + 4 {
                         let b = index
                             .cell(k + 1, child as usize)
-                            .lower_bound(p, best_distance);
-                        push(b.max(bound), Item::Cell(k + 1, child));
+                            .lower_bound(p, search.best_distance);
+                        search.offer(b.max(bound), Item::Cell(k + 1, child));
                     }
                 }
                 Item::Cell(_, cell) => {
                     let cell = cell as usize;
-                    // A local minimum already found in this cell is its
-                    // minimum (one basin per cell).
-                    if minima.contains(&cell) {
-                        continue;
+                    if search.best.is_none() {
+                        // The first solve walks to a local minimum of the
+                        // surface: a good bound to prune with.
+                        let (tri, uv) = index.start(cell, p);
+                        search.improve(local::descend(self, p, tri, uv.x, uv.y).0);
                     }
-                    let (tri, uv) = index.start(cell, p);
-                    // The first solve walks to a local minimum of the
-                    // surface; later ones only need the cell's own minimum,
-                    // and walk on from it if it beats the best.
-                    let (found, converged) = if best.is_none() {
-                        local::descend(self, p, tri, uv.x, uv.y)
-                    } else {
-                        let region = local::Region::new(index.cell_corners(cell));
-                        let (own, converged) = local::descend_within(self, p, tri, uv, &region);
-                        if converged && own.distance >= best_distance {
-                            continue;
-                        }
-                        local::descend(self, p, tri, own.v, own.w)
-                    };
-                    if converged {
-                        minima.push(index.cell_at(found.tri, found.v, found.w));
+                    // Pieces start one level below whole control triangles.
+                    let level = index.level.max(1);
+                    let first = cell << (2 * (level - index.level));
+                    for piece in first..first + (1 << (2 * (level - index.level))) {
+                        let (tri, corners) = cell::cell_corners(piece, level);
+                        let piece = Piece::new(self, tri, level, corners);
+                        // A special corner's region is bounded more tightly by
+                        // the cell's container than by its own: split it now.
+                        search.open(piece, bound);
                     }
-                    if found.distance < best_distance {
-                        best_distance = found.distance;
-                        best = Some(found);
-                    }
+                }
+                Item::Piece(i) => {
+                    let piece = search.pieces[i as usize].take().expect("opened once");
+                    search.open(piece, bound);
                 }
             }
         }
-        best.expect("a surface has at least one triangle")
+        let mut best = search.best.expect("a surface has at least one triangle");
+        best.lower_bound = search.closed.min(best.distance).max(0.0);
+        best
     }
 }
 
-/// What the search opens next: a node of the patches' hierarchy, or a cell
-/// (level, index) of a patch's quadtree.
+/// The state of one query's search.
+struct Search<'a> {
+    surface: &'a Surface,
+    p: DVec3,
+    /// Absolute tolerance of the certificate.
+    tolerance: f64,
+    /// Round-off allowance of the pieces' containers and bounds.
+    pad: f64,
+    best: Option<Snap>,
+    best_distance: f64,
+    /// The smallest lower bound of everything closed so far.
+    closed: f64,
+    pending: BinaryHeap<Reverse<(Bound, Item)>>,
+    /// Pieces waiting in the heap (taken when opened).
+    pieces: Vec<Option<Piece>>,
+    splits: usize,
+}
+
+impl Search<'_> {
+    /// Queues `item` with its lower bound, or closes it if the bound is
+    /// within the tolerance of the best distance.
+    fn offer(&mut self, bound: f64, item: Item) {
+        if bound >= self.best_distance - self.tolerance {
+            self.close(bound);
+        } else {
+            self.pending.push(Reverse((Bound(bound), item)));
+        }
+    }
+
+    fn close(&mut self, bound: f64) {
+        self.closed = self.closed.min(bound);
+    }
+
+    fn improve(&mut self, found: Snap) {
+        if found.distance < self.best_distance {
+            self.best_distance = found.distance;
+            self.best = Some(found);
+        }
+    }
+
+    /// Queues a piece under its container's bound (at least its parent's).
+    fn add(&mut self, piece: Piece, parent: f64) {
+        let bound = piece
+            .container(self.surface, self.pad)
+            .lower_bound(self.p, self.best_distance)
+            .max(parent);
+        if bound >= self.best_distance - self.tolerance {
+            self.close(bound);
+            return;
+        }
+        self.pieces.push(Some(piece));
+        self.offer(bound, Item::Piece(self.pieces.len() as u32 - 1));
+    }
+
+    /// A piece whose container does not rule it out: closed by a convexity
+    /// certificate, or searched for a nearer point and split.
+    fn open(&mut self, piece: Piece, bound: f64) {
+        if let Shape::Poly(q) = &piece.shape {
+            let d = q.derivatives();
+            match certify::convexity(q, &d, self.p) {
+                Some(convex) => {
+                    if let Some(closing) = self.certify(&piece, q, &d, &convex) {
+                        self.close(closing.max(bound));
+                        return;
+                    }
+                }
+                // Several minima may share the piece: the nearest one's
+                // basin is found while splitting, but a local minimum now
+                // prunes the others' pieces sooner.
+                None => {
+                    self.solve(&piece, q, None);
+                }
+            }
+        }
+        if piece.level >= MAX_LEVEL {
+            self.close(bound);
+            return;
+        }
+        self.splits += 1;
+        for child in piece.split(self.surface) {
+            self.add(child, bound);
+        }
+    }
+
+    /// The minimum of the distance over the piece (a local one where it is
+    /// not convex), from the point of its flat triangle nearest to p; a
+    /// nearer point than the best walks on across the piece's sides.
+    fn solve(&mut self, piece: &Piece, q: &bezier::Quartic, start: Option<DVec2>) -> Snap {
+        let p = self.p;
+        let [a, b, c] = q.corners();
+        let centre = DVec2::splat(1.0 / 3.0);
+        let start = start.unwrap_or_else(|| {
+            piece.global(0.95 * cell::closest_in_triangle(p, a, b, c) + 0.05 * centre)
+        });
+        let region = local::Region::new(piece.corners);
+        let (own, _) = local::descend_within(self.surface, p, piece.tri, start, &region);
+        if own.distance < self.best_distance {
+            let (walked, _) = local::descend(self.surface, p, piece.tri, own.v, own.w);
+            self.improve(own);
+            self.improve(walked);
+        }
+        own
+    }
+
+    /// For a polynomial piece over which the squared distance is proven
+    /// convex: a lower bound on the distance to the piece, within the
+    /// tolerance of the best distance. The piece's minimum is found in its
+    /// own polynomial first; only when it beats the best is it solved for
+    /// on the surface. `None` when the piece must be split (round-off left
+    /// the bound short of the tolerance).
+    fn certify(
+        &mut self,
+        piece: &Piece,
+        q: &bezier::Quartic,
+        d: &bezier::Derivatives,
+        convex: &certify::Convex,
+    ) -> Option<f64> {
+        let p = self.p;
+        let pad = self.pad;
+        let distance = |f: f64| (2.0 * f.max(0.0)).sqrt() - pad;
+        // The piece's minimum, in its own polynomial: if it is no nearer than
+        // the best, the piece is closed without touching the evaluator.
+        let (u, jet) = convex.minimiser(q, d, p);
+        let bound = distance(convex.lower_bound(&jet, u, p));
+        if bound >= self.best_distance - self.tolerance {
+            return Some(bound);
+        }
+        // It holds a nearer point: solve for it exactly (and walk on).
+        let own = self.solve(piece, q, Some(piece.global(u)));
+        let u = piece.local(DVec2::new(own.v, own.w));
+        let at = distance(convex.lower_bound(&q.jet(d, u.x, u.y), u, p));
+        (at >= self.best_distance - self.tolerance).then_some(at)
+    }
+}
+
+/// What the search opens next: a node of the patches' hierarchy, a cell
+/// (level, index) of a patch's quadtree, or a piece below the finest cells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 enum Item {
     Node(u32),
     Cell(u32, u32),
+    Piece(u32),
 }
 
 /// A distance bound, ordered (never NaN: points and nets are finite).
@@ -176,6 +344,16 @@ fn check_point(p: DVec3) -> Result<()> {
         Err(Error::InvalidArgument(format!(
             "snap: the point {:?} is not finite",
             p.to_array()
+        )))
+    }
+}
+
+fn check_tolerance(tolerance: f64) -> Result<()> {
+    if tolerance > 0.0 && tolerance < 1.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument(format!(
+            "snap: the certificate tolerance {tolerance} is not in (0, 1) (a fraction of the bounding-box diagonal)"
         )))
     }
 }

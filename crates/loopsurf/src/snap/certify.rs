@@ -1,0 +1,147 @@
+//! Certificates for one polynomial piece: proving that the squared distance
+//! f(s, t) = ½ |X(s, t) − p|² is convex over the piece, and lower bounds on
+//! f there that follow.
+//!
+//! The Hessian of f is H = JᵀJ + Σ r · X₍₎ (r = X − p), a matrix of
+//! polynomials of degree 6 on a quartic piece. In Bernstein form it is a
+//! convex combination of 28 constant matrices, so the smallest of their
+//! smallest eigenvalues, m, bounds H's from below over the whole piece. If
+//! m > 0 then f is strongly convex on the piece, and for any point u of it
+//! f ≥ f(u) + ∇f(u) · δ + ½ m |δ|², whose minimum over the piece's triangle
+//! is a lower bound of f there. Taken at the centroid it often rules a piece
+//! out without a solve; taken at the piece's minimiser it is that minimum to
+//! round-off, so the search may close the piece.
+//!
+//! All of this is in the piece's own local coordinates: convexity does not
+//! depend on an affine change of parameters, and next to a special vertex
+//! the rings' pieces are regular patches at their own scale, where the
+//! control triangle's (v, w) is singular.
+
+use super::bezier::{hessian_products, Derivatives, Jet, Quartic, SEXTIC};
+use super::cell::closest_in_triangle;
+use glam::{DVec2, DVec3};
+
+/// The quadratic model of f on a piece proven strongly convex, with the
+/// curvature bound that holds over the whole piece.
+pub(crate) struct Convex {
+    /// Lower bound on the smallest eigenvalue of f's Hessian over the piece.
+    m: f64,
+}
+
+/// Proves f convex over the piece `q` for the query `p`, or says it cannot.
+///
+/// The Hessian's entries Xs·Xs + r·Xss, Xs·Xt + r·Xst, Xt·Xt + r·Xtt are
+/// polynomials of degree 6; written in Bernstein form (products of the
+/// derivative nets, r = X − p having the coefficients b − p) the Hessian is
+/// a convex combination of 28 symmetric matrices over the piece, and the
+/// smallest eigenvalue, a concave function, is at least the smallest of
+/// theirs.
+pub(crate) fn convexity(q: &Quartic, d: &Derivatives, p: DVec3) -> Option<Convex> {
+    let (cubics, quartic_quadratic) = hessian_products();
+    let mut h = [[0.0f64; 3]; SEXTIC];
+    for t in cubics {
+        let (a, b) = (t.a as usize, t.b as usize);
+        let entry = &mut h[t.into as usize];
+        entry[0] += t.weight * d.s[a].dot(d.s[b]);
+        entry[1] += t.weight * d.s[a].dot(d.t[b]);
+        entry[2] += t.weight * d.t[a].dot(d.t[b]);
+    }
+    for t in quartic_quadratic {
+        let r = q.0[t.a as usize] - p;
+        let b = t.b as usize;
+        let entry = &mut h[t.into as usize];
+        entry[0] += t.weight * r.dot(d.ss[b]);
+        entry[1] += t.weight * r.dot(d.st[b]);
+        entry[2] += t.weight * r.dot(d.tt[b]);
+    }
+    let (mut m, mut scale) = (f64::INFINITY, 0.0f64);
+    for [a, b, c] in h {
+        m = m.min(0.5 * (a + c) - (0.25 * (a - c) * (a - c) + b * b).sqrt());
+        scale = scale.max(a.abs() + b.abs() + c.abs());
+    }
+    // A margin for the round-off in the sums above.
+    (m > 1e-10 * scale).then_some(Convex { m })
+}
+
+impl Convex {
+    /// A lower bound on f over the piece from the jet at local `u`: the
+    /// minimum over the piece's triangle of f(u) + ∇f(u)·δ + ½ m |δ|².
+    pub(crate) fn lower_bound(&self, jet: &Jet, u: DVec2, p: DVec3) -> f64 {
+        let r = jet.x - p;
+        let f = 0.5 * r.length_squared();
+        let g = DVec2::new(r.dot(jet.s), r.dot(jet.t));
+        // f + g·δ + ½m|δ|² = const + ½m |u + δ − centre|²: smallest at the
+        // point of the triangle nearest to the centre (evaluated there, not
+        // through the constant, which would cancel).
+        let centre = u - g / self.m;
+        let delta = closest_in_triangle(centre, DVec2::ZERO, DVec2::X, DVec2::Y) - u;
+        f + g.dot(delta) + 0.5 * self.m * delta.length_squared()
+    }
+
+    /// The minimiser over the piece of the squared distance, proven convex:
+    /// sequential quadratic steps, each the exact minimum over the triangle
+    /// of f's second-order model (its Hessian is positive definite all over
+    /// the piece), from the centroid. Returns local (s, t) and the jet there.
+    pub(crate) fn minimiser(&self, q: &Quartic, d: &Derivatives, p: DVec3) -> (DVec2, Jet) {
+        let mut u = DVec2::splat(1.0 / 3.0);
+        let mut jet = q.jet(d, u.x, u.y);
+        for _ in 0..8 {
+            let r = jet.x - p;
+            let g = DVec2::new(r.dot(jet.s), r.dot(jet.t));
+            let [ss, st, tt] = q.second(d, u.x, u.y);
+            let h = (
+                jet.s.dot(jet.s) + r.dot(ss),
+                jet.s.dot(jet.t) + r.dot(st),
+                jet.t.dot(jet.t) + r.dot(tt),
+            );
+            let next = quadratic_minimum(u, g, h).unwrap_or(u);
+            let step = (next - u).length();
+            u = next;
+            jet = q.jet(d, u.x, u.y);
+            if step.is_nan() || step <= 1e-9 {
+                break;
+            }
+        }
+        (u, jet)
+    }
+}
+
+/// The minimum over the unit triangle of g·δ + ½ δᵀHδ around `u` (H =
+/// [[a b] [b c]] positive definite): the Newton point if it lies inside,
+/// else the best of the sides' one-dimensional minima.
+fn quadratic_minimum(u: DVec2, g: DVec2, (a, b, c): (f64, f64, f64)) -> Option<DVec2> {
+    let det = a * c - b * b;
+    if det.is_nan() || det <= 0.0 {
+        return None;
+    }
+    let newton = u - DVec2::new(c * g.x - b * g.y, a * g.y - b * g.x) / det;
+    if newton.x >= 0.0 && newton.y >= 0.0 && newton.x + newton.y <= 1.0 {
+        return Some(newton);
+    }
+    let model = |x: DVec2| {
+        let e = x - u;
+        g.dot(e) + 0.5 * (a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y)
+    };
+    [
+        (DVec2::ZERO, DVec2::X),
+        (DVec2::X, DVec2::Y),
+        (DVec2::Y, DVec2::ZERO),
+    ]
+    .into_iter()
+    .map(|(from, to)| {
+        // Along from + τ (to − from), τ in [0, 1].
+        let e = to - from;
+        let slope = g.dot(e)
+            + (a * (from.x - u.x) * e.x
+                + b * ((from.x - u.x) * e.y + (from.y - u.y) * e.x)
+                + c * (from.y - u.y) * e.y);
+        let curvature = a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y;
+        let tau = if curvature > 0.0 {
+            (-slope / curvature).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        from + tau * e
+    })
+    .min_by(|x, y| model(*x).total_cmp(&model(*y)))
+}

@@ -1,0 +1,1 @@
+//! Local projection from a guess (filled in by the projection work).
