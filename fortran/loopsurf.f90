@@ -31,6 +31,19 @@ module loopsurf
     integer(c_int), parameter :: LS_INTERPOLATE_SOLVE = 1
     integer(c_int), parameter :: LS_INTERPOLATE_DISPLACEMENT = 2
 
+    !> Options of ls_snap_certified (fill with ls_snap_options_default).
+    type, bind(C) :: ls_snap_options
+        integer(c_size_t) :: struct_size
+        real(c_double) :: tolerance
+    end type
+
+    !> The answer of ls_snap_certified; set struct_size = c_sizeof(result) first.
+    type, bind(C) :: ls_snap_result
+        integer(c_size_t) :: struct_size
+        integer(c_int32_t) :: tri
+        real(c_double) :: vw(2), xyz(3), distance, lower_bound
+    end type
+
     interface
         integer(c_int) function ls_net_load(path, out) bind(C, name="ls_net_load")
             import :: c_int, c_char, c_ptr
@@ -131,6 +144,17 @@ module loopsurf
             real(c_double), intent(in) :: xyz(3)
             integer(c_int32_t), intent(out) :: tri
             real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        end function
+        integer(c_int) function ls_snap_options_default(options) bind(C, name="ls_snap_options_default")
+            import :: c_int, ls_snap_options
+            type(ls_snap_options), intent(out) :: options
+        end function
+        integer(c_int) function ls_snap_certified(surface, xyz, options, result) bind(C, name="ls_snap_certified")
+            import :: c_int, c_double, c_ptr, ls_snap_options, ls_snap_result
+            type(c_ptr), value :: surface
+            real(c_double), intent(in) :: xyz(3)
+            type(ls_snap_options), intent(in) :: options
+            type(ls_snap_result), intent(inout) :: result
         end function
         integer(c_int) function ls_snap_guess(surface, xyz, tri_guess, vw_guess, tri, vw, xyz_out, distance) &
                 bind(C, name="ls_snap_guess")
@@ -277,6 +301,31 @@ contains
         integer(c_int32_t) :: t
         status = ls_snap(surface, xyz, t, vw, xyz_out, distance)
         if (status == LS_OK) tri = int(t) + 1
+    end function
+
+    !> The closest surface point to xyz with its certificate: a proven lower
+    !> bound on the distance to the whole surface, within tolerance times the
+    !> bounding-box diagonal of the distance (tolerance in (0, 1); 1d-12 is
+    !> the default of ls_snap_options_default). tri comes back 1-BASED.
+    integer function loopsurf_snap_certified(surface, xyz, tolerance, tri, vw, xyz_out, distance, lower_bound) &
+            result(status)
+        type(c_ptr), intent(in) :: surface
+        real(c_double), intent(in) :: xyz(3), tolerance
+        integer, intent(out) :: tri
+        real(c_double), intent(out) :: vw(2), xyz_out(3), distance, lower_bound
+        type(ls_snap_options) :: options
+        type(ls_snap_result) :: answer
+        status = ls_snap_options_default(options)
+        if (status /= LS_OK) return
+        options%tolerance = tolerance
+        answer%struct_size = c_sizeof(answer)
+        status = ls_snap_certified(surface, xyz, options, answer)
+        if (status /= LS_OK) return
+        tri = int(answer%tri) + 1
+        vw = answer%vw
+        xyz_out = answer%xyz
+        distance = answer%distance
+        lower_bound = answer%lower_bound
     end function
 
     !> The last error on this thread, as a Fortran string.

@@ -6,8 +6,8 @@ program test_loopsurf
     use, intrinsic :: iso_c_binding
     implicit none
     real(c_double) :: xyz(3, 6), moved(3, 6), r(18), r2(18), many(18, 4), vw(2, 4), k(8)
-    real(c_double) :: p(3), q(3), uv(2), dist, shift(3)
-    integer :: tris(3, 8), i, failures, tri
+    real(c_double) :: p(3), q(3), uv(2), dist, shift(3), q2(3), uv2(2), dist2, bound
+    integer :: tris(3, 8), i, failures, tri, tri2
     integer(c_int32_t) :: tri0(4)
     integer(c_size_t) :: n, nv, nt, nh
     type(c_ptr) :: net, net2, surf, surf2, surf3, bytes, rxyz, rtris, mtri, mvw
@@ -101,6 +101,17 @@ program test_loopsurf
     p = r(1:3)
     call check(loopsurf_snap(surf, p, tri, uv, q, dist) == LS_OK, "snap")
     call check(dist < 1d-13 .and. tri >= 1 .and. tri <= 8, "snapped onto itself")
+
+    ! The certified snap: the same answer, its lower bound within the tolerance.
+    p = [10d0, 20d0, 30d0]
+    call check(loopsurf_snap(surf, p, tri, uv, q, dist) == LS_OK, "far snap")
+    call check(loopsurf_snap_certified(surf, p, 1d-12, tri2, uv2, q2, dist2, bound) == LS_OK, "certified snap")
+    call check(tri2 == tri .and. dist2 == dist .and. all(q2 == q), "certified = plain snap")
+    call check(bound <= dist2 .and. dist2 - bound <= 4d-12, "certificate within the tolerance")
+    call check(loopsurf_snap_certified(surf, p, 1d-6, tri2, uv2, q2, dist2, bound) == LS_OK, "loose snap")
+    call check(dist2 - bound <= 4d-6, "loose certificate")
+    call check(loopsurf_snap_certified(surf, p, 0d0, tri2, uv2, q2, dist2, bound) == LS_ERR_INVALID_ARGUMENT, &
+        "zero tolerance refused")
 
     ! Displacement interpolation passes through the original points.
     call check(ls_surface_build_interpolating(net, LS_INTERPOLATE_DISPLACEMENT, surf3) == LS_OK, "interpolating")

@@ -73,6 +73,34 @@ typedef struct ls_net ls_net;
 // An immutable limit surface, safe to query from many threads at once.
 typedef struct ls_surface ls_surface;
 
+// Options of `ls_snap_certified`: fill with `ls_snap_options_default`,
+// then change what you need.
+typedef struct {
+  // `sizeof(ls_snap_options)` as the caller was compiled with.
+  size_t struct_size;
+  // How close the certificate must come to the distance, as a fraction
+  // of the control net's bounding-box diagonal, in (0, 1); default 1e-12.
+  // Looser is faster.
+  double tolerance;
+} ls_snap_options;
+
+// The answer of `ls_snap_certified`.
+typedef struct {
+  // `sizeof(ls_snap_result)` as the caller was compiled with: set it
+  // before the call; fields beyond it are not written.
+  size_t struct_size;
+  // Control triangle (0-based) and parameters of the closest point.
+  int32_t tri;
+  double vw[2];
+  // The closest point, the surface at (tri, v, w) bit for bit.
+  double xyz[3];
+  // Its distance to the query point.
+  double distance;
+  // A proven lower bound on the distance from the query point to the
+  // whole surface: distance - lower_bound <= tolerance * diagonal.
+  double lower_bound;
+} ls_snap_result;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -217,6 +245,17 @@ int ls_net_hard_edges(const ls_net *net, size_t *n, int32_t **pairs);
 // Frees a net (NULL is ignored). Surfaces built from it stay valid.
 void ls_net_free(ls_net *net);
 
+// Writes the default options (tolerance 1e-12) into `options`.
+int ls_snap_options_default(ls_snap_options *options);
+
+// The closest point of the limit surface to `xyz` — the global minimum of
+// the distance — with a proven lower bound on the distance to the whole
+// surface (the certificate). `options` may be NULL for the defaults.
+int ls_snap_certified(const ls_surface *surface,
+                      const double *xyz,
+                      const ls_snap_options *options,
+                      ls_snap_result *result);
+
 // The last failure on the calling thread, e.g. `"ls_evaluate: point (v, w)
 // = (0.8, 0.7) of triangle 12: outside the triangle ..."`; an empty string
 // if no call has failed on this thread. The text stays valid until the next
@@ -272,7 +311,9 @@ int ls_curvature(const ls_surface *surface, int32_t tri, double v, double w, dou
 
 // The closest point of the limit surface to `xyz` (the global minimum of
 // the distance, also at hard edges, corners and boundaries): writes its
-// triangle, (v, w), position and distance.
+// triangle, (v, w), position and distance. Certified to 1e-12 of the
+// bounding-box diagonal; `ls_snap_certified` returns the certificate and
+// takes a tolerance.
 int ls_snap(const ls_surface *surface,
             const double *xyz,
             int32_t *tri,

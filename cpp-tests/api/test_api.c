@@ -265,6 +265,46 @@ static void test_queries(void) {
     const double bad_guess[2] = {0.9, 0.9};
     EXPECT(ls_snap_guess(surface, far, 2, bad_guess, &tri2, uv2, x2, &d2), LS_ERR_PARAMETER_OUT_OF_RANGE);
 
+    /* The certified snap: the same answer as ls_snap with its certificate;
+     * a looser tolerance is honoured; options may be NULL; a bad tolerance
+     * or a struct from an older caller is refused, the result untouched. */
+    ls_snap_options opts;
+    EXPECT(ls_snap_options_default(NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap_options_default(&opts), LS_OK);
+    CHECK(opts.struct_size == sizeof opts && opts.tolerance == 1e-12);
+    ls_snap_result res;
+    memset(&res, 0, sizeof res);
+    res.struct_size = sizeof res;
+    EXPECT(ls_snap_certified(surface, far, &opts, &res), LS_OK);
+    CHECK(res.tri == tri && res.vw[0] == uv[0] && res.vw[1] == uv[1] && res.distance == d);
+    CHECK(memcmp(res.xyz, x, sizeof x) == 0);
+    CHECK(res.lower_bound <= res.distance && res.distance - res.lower_bound <= 1e-12 * 4); /* diagonal < 4 */
+    EXPECT(ls_snap_certified(surface, far, NULL, &res), LS_OK);
+    CHECK(res.distance == d && res.distance - res.lower_bound <= 1e-12 * 4);
+    opts.tolerance = 1e-6;
+    EXPECT(ls_snap_certified(surface, far, &opts, &res), LS_OK);
+    CHECK(res.lower_bound <= d + 1e-15 && res.distance - res.lower_bound <= 1e-6 * 4);
+    const double bad_tolerances[4] = {0, -1, 1, NAN};
+    for (int i = 0; i < 4; i++) {
+        opts.tolerance = bad_tolerances[i];
+        res.distance = SENTINEL;
+        EXPECT(ls_snap_certified(surface, far, &opts, &res), LS_ERR_INVALID_ARGUMENT);
+        CHECK(res.distance == SENTINEL && strstr(ls_last_error(), "tolerance") != NULL);
+    }
+    EXPECT(ls_snap_options_default(&opts), LS_OK);
+    opts.struct_size = 4;
+    EXPECT(ls_snap_certified(surface, far, &opts, &res), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "struct_size") != NULL && res.distance == SENTINEL);
+    EXPECT(ls_snap_options_default(&opts), LS_OK);
+    res.struct_size = 8;
+    EXPECT(ls_snap_certified(surface, far, &opts, &res), LS_ERR_INVALID_ARGUMENT);
+    res.struct_size = sizeof res;
+    EXPECT(ls_snap_certified(NULL, far, &opts, &res), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap_certified(surface, NULL, &opts, &res), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap_certified(surface, far, &opts, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_snap_certified(surface, nan_point, &opts, &res), LS_ERR_NOT_FINITE);
+    CHECK(res.distance == SENTINEL);
+
     /* Interpolating surfaces pass through the original points. */
     ls_surface* through = NULL;
     EXPECT(ls_surface_build_interpolating(NULL, LS_INTERPOLATE_SOLVE, &through), LS_ERR_NULL_POINTER);

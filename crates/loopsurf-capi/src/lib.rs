@@ -20,12 +20,14 @@ mod adapt;
 mod buffers;
 mod mesh;
 mod net;
+mod snap;
 mod status;
 mod surface;
 
 pub use buffers::*;
 pub use mesh::*;
 pub use net::*;
+pub use snap::*;
 pub use status::*;
 pub use surface::*;
 

@@ -314,6 +314,69 @@ fn snap_answers_read_back_bit_exact_and_bad_lines_are_named() {
     );
 }
 
+/// `--certificate` adds the proven lower bound as an eighth column, within
+/// the tolerance of the distance; a bad tolerance is one clear line.
+#[test]
+fn snap_certificate_is_an_eighth_column() {
+    let input = "0.3 0.1 0.2\n40 -3 7\n";
+    let plain = text(
+        &loopsurf_with_stdin(
+            &["snap", "--example", "viking", "--hard-angle", "30"],
+            input,
+        )
+        .stdout,
+    );
+    for (tolerance, args) in [
+        (
+            1e-12,
+            vec![
+                "snap",
+                "--example",
+                "viking",
+                "--hard-angle",
+                "30",
+                "--certificate",
+            ],
+        ),
+        (
+            1e-6,
+            vec![
+                "snap",
+                "--example",
+                "viking",
+                "--hard-angle",
+                "30",
+                "--certificate",
+                "--tolerance",
+                "1e-6",
+            ],
+        ),
+    ] {
+        let out = loopsurf_with_stdin(&args, input);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let stdout = text(&out.stdout);
+        for (line, plain) in stdout.lines().zip(plain.lines()) {
+            let f: Vec<f64> = line
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
+            assert_eq!(f.len(), 8, "{line}");
+            // The Viking's bounding-box diagonal is below 3.
+            assert!(f[7] <= f[6] && f[6] - f[7] <= 3.0 * tolerance, "{line}");
+            if tolerance == 1e-12 {
+                assert!(line.starts_with(plain), "{line} vs {plain}");
+            }
+        }
+    }
+    for bad in ["0", "-1e-3", "2", "nan"] {
+        let flag = format!("--tolerance={bad}");
+        assert_clean_failure(
+            &loopsurf_with_stdin(&["snap", "--example", "torus", &flag], "0 0 0\n"),
+            "tolerance",
+        );
+    }
+}
+
 /// The README's main job: the mesher on the built-in Viking, with the
 /// summary, the .vtu arrays and a params file that reads back bit-exact.
 #[test]

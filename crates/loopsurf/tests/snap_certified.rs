@@ -139,6 +139,15 @@ fn check(name: &str, net: &ControlNet, mode: SurfaceMode, per_kind: usize) -> us
             s.distance,
             (s.distance - s.lower_bound) / diagonal
         );
+        // From a far hint (as the mesher's chord check and adapt's distance
+        // report call it), the same certified answer.
+        let near = surface.snap_near(*p, 0, 0.2, 0.2).unwrap();
+        assert!(
+            near.distance <= sampled + 1e-13 * diagonal
+                && near.lower_bound <= sampled + 1e-15 * diagonal
+                && near.distance - near.lower_bound <= 1e-12 * diagonal,
+            "{what}: snap_near {near:?}"
+        );
     }
     points.len()
 }

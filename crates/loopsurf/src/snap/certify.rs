@@ -78,14 +78,31 @@ impl Convex {
         f + g.dot(delta) + 0.5 * self.m * delta.length_squared()
     }
 
-    /// The minimiser over the piece of the squared distance, proven convex:
-    /// sequential quadratic steps, each the exact minimum over the triangle
-    /// of f's second-order model (its Hessian is positive definite all over
-    /// the piece), from the centroid. Returns local (s, t) and the jet there.
-    pub(crate) fn minimiser(&self, q: &Quartic, d: &Derivatives, p: DVec3) -> (DVec2, Jet) {
+    /// The best lower bound on f over the piece this proof gives: at the
+    /// piece's minimiser it is that minimum to round-off. Sequential
+    /// quadratic steps from the centroid, each the exact minimum over the
+    /// triangle of f's second-order model (its Hessian is positive definite
+    /// all over the piece); the bound at each iterate is valid, so the walk
+    /// stops as soon as one reaches `enough`. Returns the bound and where
+    /// it was taken (local (s, t)).
+    pub(crate) fn bound(
+        &self,
+        q: &Quartic,
+        d: &Derivatives,
+        p: DVec3,
+        enough: f64,
+    ) -> (f64, DVec2) {
         let mut u = DVec2::splat(1.0 / 3.0);
-        let mut jet = q.jet(d, u.x, u.y);
+        let (mut best, mut at) = (f64::NEG_INFINITY, u);
         for _ in 0..8 {
+            let jet = q.jet(d, u.x, u.y);
+            let bound = self.lower_bound(&jet, u, p);
+            if bound > best {
+                (best, at) = (bound, u);
+            }
+            if best >= enough {
+                break;
+            }
             let r = jet.x - p;
             let g = DVec2::new(r.dot(jet.s), r.dot(jet.t));
             let [ss, st, tt] = q.second(d, u.x, u.y);
@@ -97,12 +114,11 @@ impl Convex {
             let next = quadratic_minimum(u, g, h).unwrap_or(u);
             let step = (next - u).length();
             u = next;
-            jet = q.jet(d, u.x, u.y);
-            if step.is_nan() || step <= 1e-9 {
+            if step.is_nan() || step <= 1e-12 {
                 break;
             }
         }
-        (u, jet)
+        (best, at)
     }
 }
 
