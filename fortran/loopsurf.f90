@@ -145,6 +145,15 @@ module loopsurf
             integer(c_int32_t), intent(out) :: tri
             real(c_double), intent(out) :: vw(2), xyz_out(3), distance
         end function
+        integer(c_int) function ls_project(surface, xyz, tri_guess, vw_guess, tri, vw, xyz_out, distance) &
+                bind(C, name="ls_project")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), intent(in) :: xyz(3), vw_guess(2)
+            integer(c_int32_t), value :: tri_guess
+            integer(c_int32_t), intent(out) :: tri
+            real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        end function
         integer(c_int) function ls_snap_options_default(options) bind(C, name="ls_snap_options_default")
             import :: c_int, ls_snap_options
             type(ls_snap_options), intent(out) :: options
@@ -300,6 +309,20 @@ contains
         real(c_double), intent(out) :: vw(2), xyz_out(3), distance
         integer(c_int32_t) :: t
         status = ls_snap(surface, xyz, t, vw, xyz_out, distance)
+        if (status == LS_OK) tri = int(t) + 1
+    end function
+
+    !> The nearest LOCAL minimum of the distance to xyz, by Newton's method
+    !> from the guess (tri_guess 1-BASED, vw_guess): for points moved a little,
+    !> guessed from a neighbour; no global search. tri comes back 1-BASED.
+    integer function loopsurf_project(surface, xyz, tri_guess, vw_guess, tri, vw, xyz_out, distance) result(status)
+        type(c_ptr), intent(in) :: surface
+        real(c_double), intent(in) :: xyz(3), vw_guess(2)
+        integer, intent(in) :: tri_guess
+        integer, intent(out) :: tri
+        real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        integer(c_int32_t) :: t
+        status = ls_project(surface, xyz, int(tri_guess - 1, c_int32_t), vw_guess, t, vw, xyz_out, distance)
         if (status == LS_OK) tri = int(t) + 1
     end function
 

@@ -113,6 +113,13 @@ program test_loopsurf
     call check(loopsurf_snap_certified(surf, p, 0d0, tri2, uv2, q2, dist2, bound) == LS_ERR_INVALID_ARGUMENT, &
         "zero tolerance refused")
 
+    ! Local projection from the global answer of a nearby point: the same point.
+    call check(loopsurf_project(surf, p * 1.0001d0, tri, uv, tri2, uv2, q2, dist2) == LS_OK, "project")
+    call check(loopsurf_snap(surf, p * 1.0001d0, tri, uv, q, dist) == LS_OK, "snap for project")
+    call check(abs(dist2 - dist) < 1d-12 .and. tri2 >= 1 .and. tri2 <= 8, "projected = snapped")
+    call check(loopsurf_project(surf, p, 9, uv, tri2, uv2, q2, dist2) == LS_ERR_INDEX_OUT_OF_RANGE, &
+        "project: bad triangle")
+
     ! Displacement interpolation passes through the original points.
     call check(ls_surface_build_interpolating(net, LS_INTERPOLATE_DISPLACEMENT, surf3) == LS_OK, "interpolating")
     call check(loopsurf_evaluate(surf3, 1, 0d0, 0d0, r) == LS_OK, "eval at corner")

@@ -256,6 +256,21 @@ int ls_snap_certified(const ls_surface *surface,
                       const ls_snap_options *options,
                       ls_snap_result *result);
 
+// The nearest LOCAL minimum of the distance to `xyz`, by Newton's method
+// with walking from the guess (`tri_guess`, `vw_guess`): no global search
+// and no certificate, for points a mesh generator or smoother has moved a
+// little, guessed from a neighbouring point. When the guess lies in
+// another basin of the distance, the answer is not the global closest
+// point (`ls_snap` is). Outputs as `ls_snap`'s.
+int ls_project(const ls_surface *surface,
+               const double *xyz,
+               int32_t tri_guess,
+               const double *vw_guess,
+               int32_t *tri,
+               double *vw,
+               double *xyz_out,
+               double *distance);
+
 // The last failure on the calling thread, e.g. `"ls_evaluate: point (v, w)
 // = (0.8, 0.7) of triangle 12: outside the triangle ..."`; an empty string
 // if no call has failed on this thread. The text stays valid until the next

@@ -305,6 +305,30 @@ static void test_queries(void) {
     EXPECT(ls_snap_certified(surface, nan_point, &opts, &res), LS_ERR_NOT_FINITE);
     CHECK(res.distance == SENTINEL);
 
+    /* Local projection: a point near the surface from a nearby guess lands
+     * on the same point as the global snap; bad input is refused and the
+     * outputs stay untouched. */
+    const double near_point[3] = {x[0] * 1.001, x[1] * 1.001, x[2] * 1.001};
+    int32_t ptri = -7;
+    double pvw[2] = {SENTINEL, SENTINEL}, px[3], pd = SENTINEL;
+    EXPECT(ls_snap(surface, near_point, &tri2, uv2, x2, &d2), LS_OK);
+    EXPECT(ls_project(surface, near_point, tri, uv, &ptri, pvw, px, &pd), LS_OK);
+    CHECK(fabs(pd - d2) < 1e-13);
+    EXPECT(ls_evaluate(surface, ptri, pvw[0], pvw[1], r), LS_OK);
+    CHECK(memcmp(r, px, sizeof px) == 0);
+    ptri = -7;
+    pd = SENTINEL;
+    EXPECT(ls_project(NULL, near_point, tri, uv, &ptri, pvw, px, &pd), LS_ERR_NULL_POINTER);
+    EXPECT(ls_project(surface, NULL, tri, uv, &ptri, pvw, px, &pd), LS_ERR_NULL_POINTER);
+    EXPECT(ls_project(surface, near_point, tri, NULL, &ptri, pvw, px, &pd), LS_ERR_NULL_POINTER);
+    EXPECT(ls_project(surface, near_point, tri, uv, NULL, pvw, px, &pd), LS_ERR_NULL_POINTER);
+    EXPECT(ls_project(surface, near_point, tri, uv, &ptri, pvw, px, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_project(surface, near_point, 8, uv, &ptri, pvw, px, &pd), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_project(surface, near_point, -1, uv, &ptri, pvw, px, &pd), LS_ERR_INDEX_OUT_OF_RANGE);
+    EXPECT(ls_project(surface, near_point, tri, bad_guess, &ptri, pvw, px, &pd), LS_ERR_PARAMETER_OUT_OF_RANGE);
+    EXPECT(ls_project(surface, nan_point, tri, uv, &ptri, pvw, px, &pd), LS_ERR_NOT_FINITE);
+    CHECK(ptri == -7 && pd == SENTINEL);
+
     /* Interpolating surfaces pass through the original points. */
     ls_surface* through = NULL;
     EXPECT(ls_surface_build_interpolating(NULL, LS_INTERPOLATE_SOLVE, &through), LS_ERR_NULL_POINTER);

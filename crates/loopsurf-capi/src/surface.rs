@@ -73,7 +73,7 @@ pub unsafe extern "C" fn ls_surface_num_triangles(
 
 /// Checks a query's triangle index and numbers (the library checks the range
 /// of (v, w)), so each failure gets its own status code.
-fn query(surface: &Surface, tri: i32, v: f64, w: f64) -> Result<usize, Fail> {
+pub(crate) fn query(surface: &Surface, tri: i32, v: f64, w: f64) -> Result<usize, Fail> {
     let n = surface.net().triangles().len();
     let t = usize::try_from(tri)
         .ok()
@@ -287,7 +287,7 @@ pub unsafe extern "C" fn ls_snap_guess(
     })
 }
 
-type SnapOutputs = (*mut i32, *mut f64, *mut f64, *mut f64);
+pub(crate) type SnapOutputs = (*mut i32, *mut f64, *mut f64, *mut f64);
 
 /// Reads a query point; NaN or infinite coordinates are errors.
 pub(crate) unsafe fn point(xyz: *const f64) -> Result<DVec3, Fail> {
@@ -302,7 +302,7 @@ pub(crate) unsafe fn point(xyz: *const f64) -> Result<DVec3, Fail> {
     Ok(p)
 }
 
-fn snap_outputs(
+pub(crate) fn snap_outputs(
     tri: *mut i32,
     vw: *mut f64,
     xyz_out: *mut f64,
@@ -316,7 +316,7 @@ fn snap_outputs(
     ))
 }
 
-unsafe fn write_snap((tri, vw, xyz, distance): SnapOutputs, s: loopsurf::Snap) {
+pub(crate) unsafe fn write_snap((tri, vw, xyz, distance): SnapOutputs, s: loopsurf::Snap) {
     *tri = s.tri as i32;
     *vw = s.v;
     *vw.add(1) = s.w;

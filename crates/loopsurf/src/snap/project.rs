@@ -1,1 +1,27 @@
-//! Local projection from a guess (filled in by the projection work).
+//! Local projection from a guess: what a mesh generator or smoother needs
+//! for a vertex it has moved a little (EGADS's inverse evaluation with a
+//! guess). Newton with walking across triangles, no global search, no
+//! certificate — fast because it proves nothing.
+
+use super::{check_point, local, Snap};
+use crate::error::Result;
+use crate::surface::Surface;
+use glam::DVec3;
+
+impl Surface {
+    /// The nearest LOCAL minimum of the distance to `p`, found by Newton's
+    /// method from the guess (tri, v, w), walking across edges and around
+    /// vertices (minima on hard edges, corners and boundaries included).
+    ///
+    /// The answer is local: when the guess lies in another basin of the
+    /// distance than the global closest point, it is not that point. Use it
+    /// for points near the surface with a guess from a neighbouring point
+    /// (a mesh vertex moved by a smoother, a new edge midpoint);
+    /// [`Surface::closest_point`] is the global, certified answer.
+    /// `lower_bound` is 0: nothing is proven.
+    pub fn project(&self, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
+        check_point(p)?;
+        let (v, w) = self.checked_guess(tri, v, w)?;
+        Ok(local::descend(self, p, tri, v, w).0)
+    }
+}
