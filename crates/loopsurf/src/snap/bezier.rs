@@ -35,7 +35,7 @@ fn multi_indices(d: usize) -> impl Iterator<Item = (usize, usize)> {
 /// multinomial × powers, the powers tabled once per call.
 fn bernstein<const N: usize>(d: usize, l: [f64; 3]) -> [f64; N] {
     let powers = l.map(|x| {
-        let mut p = [1.0; 5];
+        let mut p = [1.0; 7];
         for k in 1..=d {
             p[k] = p[k - 1] * x;
         }
@@ -160,52 +160,70 @@ impl Quartic {
     }
 }
 
-/// The constant matrices: the four subdivision matrices, and the products of Bernstein polynomials that make
-/// up the squared distance's Hessian.
+/// The constant tables: multinomials, and the four subdivision matrices.
 struct Tables {
-    /// d! / (i! j! k!) per degree d ≤ 4, in index order.
-    multinomials: [Vec<f64>; 5],
+    /// d! / (i! j! k!) per degree d ≤ 6, in index order.
+    multinomials: [Vec<f64>; 7],
     split: [[[f64; 15]; 15]; 4],
-    cubic_times_cubic: Vec<Product>,
-    quartic_times_quadratic: Vec<Product>,
 }
 
-/// B_α · B_β = weight · B_(α+β): coefficient `a` of the first factor times
-/// coefficient `b` of the second lands, weighted, on coefficient `into` of
-/// the product (degree 6).
-#[derive(Clone, Copy)]
-pub(crate) struct Product {
-    pub(crate) a: u8,
-    pub(crate) b: u8,
-    pub(crate) into: u8,
-    pub(crate) weight: f64,
-}
-
-fn products(m: usize, n: usize) -> Vec<Product> {
-    let factorial = |n: usize| (1..=n).product::<usize>() as f64;
-    let multinomial = |d: usize, j: usize, k: usize| {
-        factorial(d) / (factorial(d - j - k) * factorial(j) * factorial(k))
+/// The squared distance's Hessian over the piece in Bernstein form of
+/// degree 6: its entries Xs·Xs + r·Xss, Xs·Xt + r·Xst, Xt·Xt + r·Xtt
+/// (r = X − p) as 28 coefficients each. A product of Bernstein polynomials
+/// is Bᵐ_α Bⁿ_β = C(m, α) C(n, β) / C(m + n, α + β) Bᵐ⁺ⁿ_(α+β): the factors'
+/// coefficients are scaled by their multinomials, convolved, and the sums
+/// divided by the product's.
+pub(crate) fn hessian_net(q: &Quartic, d: &Derivatives, p: DVec3) -> [[f64; 3]; SEXTIC] {
+    let m = &tables().multinomials;
+    let scaled = |net: &[DVec3], deg: usize| -> [DVec3; 15] {
+        let mut out = [DVec3::ZERO; 15];
+        for (i, x) in net.iter().enumerate() {
+            out[i] = *x * m[deg][i];
+        }
+        out
     };
-    let mut out = Vec::new();
-    for (ja, ka) in multi_indices(m) {
-        for (jb, kb) in multi_indices(n) {
-            let (j, k) = (ja + jb, ka + kb);
-            out.push(Product {
-                a: index(m, ja, ka) as u8,
-                b: index(n, jb, kb) as u8,
-                into: index(m + n, j, k) as u8,
-                weight: multinomial(m, ja, ka) * multinomial(n, jb, kb) / multinomial(m + n, j, k),
-            });
+    let (s, t) = (scaled(&d.s, 3), scaled(&d.t, 3));
+    let (ss, st, tt) = (scaled(&d.ss, 2), scaled(&d.st, 2), scaled(&d.tt, 2));
+    let mut r = scaled(&q.0, 4);
+    for (i, x) in r.iter_mut().enumerate() {
+        *x -= p * m[4][i];
+    }
+    let mut h = [[0.0; 3]; SEXTIC];
+    for ka in 0..=3 {
+        for ja in 0..=3 - ka {
+            let a = index(3, ja, ka);
+            for kb in 0..=3 {
+                for jb in 0..=3 - kb {
+                    let b = index(3, jb, kb);
+                    let e = &mut h[index(6, ja + jb, ka + kb)];
+                    e[0] += s[a].dot(s[b]);
+                    e[1] += s[a].dot(t[b]);
+                    e[2] += t[a].dot(t[b]);
+                }
+            }
         }
     }
-    out
-}
-
-/// The products of two cubics, and of a quartic and a quadratic, in
-/// degree-6 Bernstein form (28 coefficients).
-pub(crate) fn hessian_products() -> (&'static [Product], &'static [Product]) {
-    let t = tables();
-    (&t.cubic_times_cubic, &t.quartic_times_quadratic)
+    for ka in 0..=4 {
+        for ja in 0..=4 - ka {
+            let a = index(4, ja, ka);
+            for kb in 0..=2 {
+                for jb in 0..=2 - kb {
+                    let b = index(2, jb, kb);
+                    let e = &mut h[index(6, ja + jb, ka + kb)];
+                    e[0] += r[a].dot(ss[b]);
+                    e[1] += r[a].dot(st[b]);
+                    e[2] += r[a].dot(tt[b]);
+                }
+            }
+        }
+    }
+    for (g, e) in h.iter_mut().enumerate() {
+        let w = 1.0 / m[6][g];
+        for x in e.iter_mut() {
+            *x *= w;
+        }
+    }
+    h
 }
 
 pub(crate) const SEXTIC: usize = count(6);
@@ -245,8 +263,6 @@ fn tables() -> &'static Tables {
         Tables {
             multinomials,
             split,
-            cubic_times_cubic: products(3, 3),
-            quartic_times_quadratic: products(4, 2),
         }
     })
 }
@@ -309,6 +325,35 @@ mod tests {
             let got = [jet.x, jet.s, jet.t, ss, st, tt];
             for (g, w) in got.iter().zip(want) {
                 assert!((*g - w).length() < 1e-13, "({s}, {t}): {g} vs {w}");
+            }
+        }
+    }
+
+    /// The Hessian's Bernstein form takes the values of the Hessian
+    /// computed from the jet.
+    #[test]
+    fn hessian_net_is_the_hessian() {
+        let q = bezier();
+        let d = q.derivatives();
+        let p = DVec3::new(0.2, -0.4, 1.7);
+        let h = hessian_net(&q, &d, p);
+        for (s, t) in [(0.1, 0.2), (0.7, 0.05), (0.0, 1.0), (0.33, 0.33)] {
+            let b6 = bernstein::<SEXTIC>(6, [1.0 - s - t, s, t]);
+            let got: [f64; 3] =
+                std::array::from_fn(|e| b6.iter().zip(&h).map(|(w, x)| w * x[e]).sum());
+            let jet = q.jet(&d, s, t);
+            let [ss, st, tt] = q.second(&d, s, t);
+            let r = jet.x - p;
+            let want = [
+                jet.s.dot(jet.s) + r.dot(ss),
+                jet.s.dot(jet.t) + r.dot(st),
+                jet.t.dot(jet.t) + r.dot(tt),
+            ];
+            for e in 0..3 {
+                assert!(
+                    (got[e] - want[e]).abs() < 1e-12,
+                    "({s}, {t}): {got:?} vs {want:?}"
+                );
             }
         }
     }

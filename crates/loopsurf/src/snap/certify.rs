@@ -17,7 +17,7 @@
 //! the rings' pieces are regular patches at their own scale, where the
 //! control triangle's (v, w) is singular.
 
-use super::bezier::{hessian_products, Derivatives, Jet, Quartic, SEXTIC};
+use super::bezier::{hessian_net, Derivatives, Jet, Quartic};
 use super::cell::closest_in_triangle;
 use glam::{DVec2, DVec3};
 
@@ -37,23 +37,7 @@ pub(crate) struct Convex {
 /// smallest eigenvalue, a concave function, is at least the smallest of
 /// theirs.
 pub(crate) fn convexity(q: &Quartic, d: &Derivatives, p: DVec3) -> Option<Convex> {
-    let (cubics, quartic_quadratic) = hessian_products();
-    let mut h = [[0.0f64; 3]; SEXTIC];
-    for t in cubics {
-        let (a, b) = (t.a as usize, t.b as usize);
-        let entry = &mut h[t.into as usize];
-        entry[0] += t.weight * d.s[a].dot(d.s[b]);
-        entry[1] += t.weight * d.s[a].dot(d.t[b]);
-        entry[2] += t.weight * d.t[a].dot(d.t[b]);
-    }
-    for t in quartic_quadratic {
-        let r = q.0[t.a as usize] - p;
-        let b = t.b as usize;
-        let entry = &mut h[t.into as usize];
-        entry[0] += t.weight * r.dot(d.ss[b]);
-        entry[1] += t.weight * r.dot(d.st[b]);
-        entry[2] += t.weight * r.dot(d.tt[b]);
-    }
+    let h = hessian_net(q, d, p);
     let (mut m, mut scale) = (f64::INFINITY, 0.0f64);
     for [a, b, c] in h {
         m = m.min(0.5 * (a + c) - (0.25 * (a - c) * (a - c) + b * b).sqrt());
