@@ -38,11 +38,13 @@ pub(crate) enum Shape {
     /// One quartic polynomial, in Bézier form on the piece.
     Poly(Quartic),
     /// The region at the special vertex at corner `at` of the piece: the
-    /// neighbourhood of its ring as offsets from the vertex's limit point.
+    /// neighbourhood of its ring as offsets from the vertex's limit point,
+    /// and the surface at the piece's corners (the frame of its container).
     Corner {
         at: usize,
         offsets: Vec<DVec3>,
         limit: DVec3,
+        frame: [DVec3; 3],
     },
 }
 
@@ -58,11 +60,23 @@ impl Piece {
             if let Some((patch, around)) = evaluator.special_corner(tri, k) {
                 let (offsets, limit) =
                     patch.ring_offsets(evaluator.refined_points(), around, level as usize - 1);
+                let frame = std::array::from_fn(|i| {
+                    if i == at {
+                        limit
+                    } else {
+                        evaluator.point(tri, corners[i].x, corners[i].y)
+                    }
+                });
                 return Piece {
                     tri,
                     level,
                     corners,
-                    shape: Shape::Corner { at, offsets, limit },
+                    shape: Shape::Corner {
+                        at,
+                        offsets,
+                        limit,
+                        frame,
+                    },
                 };
             }
         }
@@ -130,10 +144,13 @@ impl Piece {
     pub(crate) fn container(&self, surface: &Surface, pad: f64) -> CellBound {
         match &self.shape {
             Shape::Poly(q) => CellBound::new(q.corners(), q.0, pad),
-            Shape::Corner { offsets, limit, .. } => {
-                let corners = self
-                    .corners
-                    .map(|uv| surface.evaluator().point(self.tri, uv.x, uv.y));
+            Shape::Corner {
+                offsets,
+                limit,
+                frame,
+                ..
+            } => {
+                let corners = *frame;
                 // The displacement is linear over the piece: its values lie
                 // in the hull of those at the piece's corners.
                 let d = surface.displacements_of(self.tri);
@@ -161,7 +178,9 @@ impl Piece {
                     shape: Shape::Poly(q),
                 })
                 .collect(),
-            Shape::Corner { at, offsets, limit } => {
+            Shape::Corner {
+                at, offsets, limit, ..
+            } => {
                 let child = CORNERS
                     .iter()
                     .position(|c| *c == self.corners[at])
@@ -170,28 +189,48 @@ impl Piece {
                 let (patch, _) = evaluator
                     .special_corner(self.tri, child)
                     .expect("a special corner");
-                let mut next = Some(patch.next_ring(&offsets));
-                let mut pieces = Vec::with_capacity(4);
-                for (c, corners) in children.into_iter().enumerate() {
-                    let shape = if c == at {
-                        let offsets = next.take().expect("one corner child");
-                        Shape::Corner { at, offsets, limit }
-                    } else {
-                        // A regular cell of this ring, from the ring's points.
+                // The three regular cells of this ring, from the ring's points.
+                let mut pieces: Vec<Piece> = (0..4)
+                    .filter(|&c| c != at)
+                    .map(|c| {
+                        let corners = children[c];
                         let centre = (corners[0] + corners[1] + corners[2]) / 3.0;
                         let region = evaluator
                             .ring_bezier(self.tri, child, (&offsets, limit), (centre.x, centre.y))
                             .expect("a ring cell");
-                        pieces.push(Piece::within(surface, self.tri, level, corners, region));
-                        continue;
-                    };
-                    pieces.push(Piece {
-                        tri: self.tri,
-                        level,
-                        corners,
-                        shape,
-                    });
-                }
+                        Piece::within(surface, self.tri, level, corners, region)
+                    })
+                    .collect();
+                // The next corner region; its corners are the vertex and
+                // corners of the ring's cells, whose surface points those
+                // hold already.
+                let corners = children[at];
+                let frame = std::array::from_fn(|i| {
+                    if i == at {
+                        return limit;
+                    }
+                    pieces
+                        .iter()
+                        .find_map(|piece| {
+                            let Shape::Poly(q) = &piece.shape else {
+                                return None;
+                            };
+                            let k = piece.corners.iter().position(|c| *c == corners[i])?;
+                            Some(q.corners()[k])
+                        })
+                        .expect("a ring cell shares each side's midpoint")
+                });
+                pieces.push(Piece {
+                    tri: self.tri,
+                    level,
+                    corners,
+                    shape: Shape::Corner {
+                        at,
+                        offsets: patch.next_ring(&offsets),
+                        limit,
+                        frame,
+                    },
+                });
                 pieces
             }
         }
