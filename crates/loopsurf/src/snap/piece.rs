@@ -39,7 +39,8 @@ pub(crate) enum Shape {
     Poly(Quartic),
     /// The region at the special vertex at corner `at` of the piece: the
     /// neighbourhood of its ring as offsets from the vertex's limit point,
-    /// and the surface at the piece's corners (the frame of its container).
+    /// and the surface (displaced, where it is) at the piece's corners: the
+    /// frame of its container.
     Corner {
         at: usize,
         offsets: Vec<DVec3>,
@@ -61,10 +62,11 @@ impl Piece {
                 let (offsets, limit) =
                     patch.ring_offsets(evaluator.refined_points(), around, level as usize - 1);
                 let frame = std::array::from_fn(|i| {
+                    let uv = corners[i];
                     if i == at {
-                        limit
+                        surface.displaced_point(tri, uv.x, uv.y, limit)
                     } else {
-                        evaluator.point(tri, corners[i].x, corners[i].y)
+                        surface.displaced_point(tri, uv.x, uv.y, evaluator.point(tri, uv.x, uv.y))
                     }
                 });
                 return Piece {
@@ -121,7 +123,7 @@ impl Piece {
             let children = children(at);
             let c = (0..4)
                 .find(|&c| contains(children[c], centre))
-                .expect("the piece lies in the region");
+                .expect("the piece lies in its region");
             q = q.child(c);
             at = children[c];
         }
@@ -207,7 +209,8 @@ impl Piece {
                 let corners = children[at];
                 let frame = std::array::from_fn(|i| {
                     if i == at {
-                        return limit;
+                        let uv = corners[at];
+                        return surface.displaced_point(self.tri, uv.x, uv.y, limit);
                     }
                     pieces
                         .iter()
