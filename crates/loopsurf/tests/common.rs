@@ -5,26 +5,13 @@
 use loopsurf::ControlNet;
 use std::path::PathBuf;
 
-/// A CGAL demo mesh from the cache the test command extracts, or None (with a
-/// note) when running outside it.
+#[path = "support/cgal_data.rs"]
+mod cgal_data;
+
+/// A CGAL demo mesh (see [`cgal_data`]): `None` only when the data is
+/// absent and `LOOPSURF_SKIP_DATA` asks to skip.
 pub fn cgal_mesh(name: &str) -> Option<PathBuf> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../.cache/cgal/data/meshes")
-        .join(name);
-    if path.exists() {
-        Some(path)
-    } else {
-        assert!(
-            std::env::var_os("LOOPSURF_REQUIRE_DATA").is_none(),
-            "{} missing: run scripts/test.sh",
-            path.display()
-        );
-        eprintln!(
-            "skipping: {} not extracted (scripts/test.sh does that)",
-            path.display()
-        );
-        None
-    }
+    cgal_data::cgal_file(name)
 }
 
 /// [`loopsurf::examples::bicone`] as a control net.

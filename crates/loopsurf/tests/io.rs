@@ -9,6 +9,9 @@ use loopsurf::io::{
 };
 use loopsurf::Error;
 
+#[path = "support/cgal_data.rs"]
+mod cgal_data;
+
 /// A fresh directory per test under the system temp dir.
 fn dir(test: &str) -> PathBuf {
     let d = std::env::temp_dir()
@@ -833,11 +836,9 @@ fn unknown_extension_and_missing_file() {
 
 #[test]
 fn cgal_demo_meshes() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../.cache/cgal/data/meshes");
-    if !dir.is_dir() {
-        eprintln!("skipping: {} is absent", dir.display());
+    let Some(dir) = cgal_data::cgal_dir() else {
         return;
-    }
+    };
     for (name, nv, nt) in [
         ("pig.off", 468, 891),
         ("cow.off", 2904, 5804),

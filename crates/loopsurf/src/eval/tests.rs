@@ -4,7 +4,6 @@
 use super::{box_spline, regular};
 use crate::features::VertexKind;
 use crate::{examples, ControlNet, DVec3};
-use std::path::PathBuf;
 
 /// (patches with only real points, patches with phantoms) checked; panics
 /// on any point off the reference by more than 1e-13 of the diagonal.
@@ -48,20 +47,13 @@ fn check_regular_patches(net: &ControlNet, levels: u32) -> (usize, usize) {
     (plain, phantom)
 }
 
-/// A CGAL demo mesh with edges over `angle` degrees hard, or `None` (a
-/// failure under the test script, which extracts them) when absent.
+#[path = "../../tests/support/cgal_data.rs"]
+mod cgal_data;
+
+/// A CGAL demo mesh with edges over `angle` degrees hard; `None` only when
+/// the data is absent and `LOOPSURF_SKIP_DATA` asks to skip.
 fn cgal(name: &str, angle: Option<f64>) -> Option<ControlNet> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../.cache/cgal/data/meshes")
-        .join(name);
-    if !path.exists() {
-        assert!(
-            std::env::var_os("LOOPSURF_REQUIRE_DATA").is_none(),
-            "{} missing",
-            path.display()
-        );
-        return None;
-    }
+    let path = cgal_data::cgal_file(name)?;
     let mut net = ControlNet::read(&path).unwrap();
     if let Some(deg) = angle {
         net.tag_by_angle(deg).unwrap();
