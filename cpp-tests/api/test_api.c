@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static int failures = 0;
 #define CHECK(cond)                                                                   \
@@ -28,10 +29,63 @@ static const double OCTA_XYZ[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1,
 static const int32_t OCTA_TRIS[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
                                     2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
 
-static void write_file(const char* path, const char* text) {
+/* Test files go into a directory of this run's own (test_api and
+ * test_api_static run side by side), never into the working directory. */
+static char scratch_dir[64];
+
+static const char* scratch(const char* name) {
+    static char path[128];
+    snprintf(path, sizeof path, "%s/%s", scratch_dir, name);
+    return path;
+}
+
+static const char* write_file(const char* name, const char* text) {
+    const char* path = scratch(name);
     FILE* f = fopen(path, "w");
-    fputs(text, f);
-    fclose(f);
+    CHECK(f != NULL);
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+    return path;
+}
+
+static int compare_edges(const void* a, const void* b) {
+    const int64_t x = *(const int64_t*)a, y = *(const int64_t*)b;
+    return (x > y) - (x < y);
+}
+
+/* The number of edges of a triangle mesh, counted, or -1 unless every edge
+ * has exactly two triangles (a closed manifold): what an Euler check must
+ * rest on, rather than E = 3T/2. */
+static long closed_edges(const int32_t* tris, size_t nt) {
+    int64_t* keys = malloc(3 * nt * sizeof *keys);
+    for (size_t t = 0; t < nt; t++) {
+        for (int k = 0; k < 3; k++) {
+            int64_t a = tris[3 * t + k], b = tris[3 * t + (k + 1) % 3];
+            keys[3 * t + k] = a < b ? (a << 32) | b : (b << 32) | a;
+        }
+    }
+    qsort(keys, 3 * nt, sizeof *keys, compare_edges);
+    long edges = 0;
+    for (size_t i = 0; i < 3 * nt;) {
+        size_t j = i;
+        while (j < 3 * nt && keys[j] == keys[i]) j++;
+        if (j - i != 2) {
+            free(keys);
+            return -1;
+        }
+        edges++;
+        i = j;
+    }
+    free(keys);
+    return edges;
+}
+
+/* V - E + F of a closed mesh, or a value no sphere has (-99) if it is open. */
+static long euler(size_t nv, const int32_t* tris, size_t nt) {
+    long e = closed_edges(tris, nt);
+    return e < 0 ? -99 : (long)nv - e + (long)nt;
 }
 
 static ls_surface* octahedron(ls_net** net_out) {
@@ -80,20 +134,19 @@ static void test_nets(const char* data_dir) {
     EXPECT(ls_net_load("/nonexistent/mesh.off", &net), LS_ERR_IO);
     CHECK(strstr(ls_last_error(), "/nonexistent/mesh.off") != NULL);
     CHECK(strncmp(ls_last_error(), "ls_net_load:", 12) == 0);
-    write_file("api_test.xyz", "nothing");
-    EXPECT(ls_net_load("api_test.xyz", &net), LS_ERR_IO);
-    write_file("api_test_bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n");
-    EXPECT(ls_net_load("api_test_bad.off", &net), LS_ERR_PARSE);
+    EXPECT(ls_net_load(write_file("api_test.xyz", "nothing"), &net), LS_ERR_IO);
+    EXPECT(ls_net_load(write_file("api_test_bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n"), &net),
+           LS_ERR_PARSE);
     CHECK(strstr(ls_last_error(), "api_test_bad.off") != NULL && strstr(ls_last_error(), "5") != NULL);
-    write_file("api_test_trunc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
-    EXPECT(ls_net_load("api_test_trunc.off", &net), LS_ERR_PARSE);
+    EXPECT(ls_net_load(write_file("api_test_trunc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"), &net), LS_ERR_PARSE);
     /* Three triangles on one edge. */
-    write_file("api_test_nm.off",
-               "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
-    EXPECT(ls_net_load("api_test_nm.off", &net), LS_ERR_NON_MANIFOLD);
+    EXPECT(ls_net_load(write_file("api_test_nm.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n"
+                                                     "3 0 1 2\n3 1 0 3\n3 0 1 4\n"),
+                       &net),
+           LS_ERR_NON_MANIFOLD);
     CHECK(strstr(ls_last_error(), "non-manifold edge") != NULL);
-    write_file("api_test_flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
-    EXPECT(ls_net_load("api_test_flat.off", &net), LS_ERR_DEGENERATE);
+    EXPECT(ls_net_load(write_file("api_test_flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n"), &net),
+           LS_ERR_DEGENERATE);
     CHECK(strstr(ls_last_error(), "triangle 0") != NULL);
     CHECK(net == untouched);
 
@@ -360,10 +413,18 @@ static void test_refine(void) {
     EXPECT(ls_refine(surface, 13, 0, &nv, &xyz, &nt, &tris), LS_ERR_INVALID_ARGUMENT);
     CHECK(xyz == (double*)&SENTINEL && nv == 0);
     EXPECT(ls_refine(surface, 2, 0, &nv, &xyz, &nt, &tris), LS_OK);
-    CHECK(nt == 8 * 16 && nv == 66); /* closed genus 0: V = T/2 + 2 */
+    CHECK(nt == 8 * 16 && nv == 66 && euler(nv, tris, nt) == 2); /* closed, genus 0 */
     for (size_t i = 0; i < 3 * nt; i++) CHECK(tris[i] >= 0 && (size_t)tris[i] < nv);
-    CHECK(memcmp(xyz, OCTA_XYZ, 0) == 0);
-    /* Level 0 is the net itself; the limit push moves every vertex inwards. */
+    /* Level 0 is the net itself, bit for bit and in file order. */
+    double* net_xyz = NULL;
+    int32_t* net_tris = NULL;
+    size_t nv0 = 0, nt0 = 0;
+    EXPECT(ls_refine(surface, 0, 0, &nv0, &net_xyz, &nt0, &net_tris), LS_OK);
+    CHECK(nv0 == 6 && nt0 == 8 && memcmp(net_xyz, OCTA_XYZ, sizeof OCTA_XYZ) == 0 &&
+          memcmp(net_tris, OCTA_TRIS, sizeof OCTA_TRIS) == 0);
+    ls_free_array(net_xyz);
+    ls_free_array(net_tris);
+    /* The limit push moves every vertex inwards. */
     double* limit = NULL;
     int32_t* limit_tris = NULL;
     size_t lnv = 0, lnt = 0;
@@ -416,7 +477,7 @@ static void test_mesh(void) {
     EXPECT(ls_mesh(surface, 3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &chart, &tvw), LS_OK);
     CHECK(nt == 8 * 9);
     CHECK(nv == 6 + 12 * 2 + 8 * 1);
-    CHECK(nv - (3 * nt) / 2 + nt == 2);
+    CHECK(euler(nv, tris, nt) == 2);
     for (size_t i = 0; i < nv; i++) {
         EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
         for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - xyz[3 * i + k]) < 1e-13);
@@ -437,7 +498,7 @@ static void test_mesh(void) {
 
     /* Tolerance-driven and adaptive, optional outputs skipped. */
     EXPECT(ls_mesh(surface, 0, 0, 1e-3, 1, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
-    CHECK(nt > 8 && nv - (3 * nt) / 2 + nt == 2);
+    CHECK(nt > 8 && euler(nv, tris, nt) == 2);
     ls_free_array(xyz);
     ls_free_array(tris);
     ls_free_array(vtri);
@@ -465,7 +526,7 @@ static void test_adapt(void) {
     double r[18];
     /* Angle 0 is uniform Loop: 8 * 4^2 triangles, closed. */
     EXPECT(ls_adapt(surface, 0.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
-    CHECK(nt == 128 && nv - (3 * nt) / 2 + nt == 2);
+    CHECK(nt == 128 && euler(nv, tris, nt) == 2);
     ls_free_array(xyz);
     ls_free_array(tris);
     ls_free_array(vtri);
@@ -473,7 +534,7 @@ static void test_adapt(void) {
     /* Adaptive, pushed to the limit: fewer triangles, still closed, every
        vertex the surface at its parameters. */
     EXPECT(ls_adapt(surface, 20.0, 0.0, 4, 1, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
-    CHECK(nt < 8 * 256 && nt > 8 && nv - (3 * nt) / 2 + nt == 2);
+    CHECK(nt < 8 * 256 && nt > 8 && euler(nv, tris, nt) == 2);
     for (size_t i = 0; i < nv; i++) {
         EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
         for (int k = 0; k < 3; k++) CHECK(r[k] == xyz[3 * i + k]);
@@ -560,6 +621,12 @@ static void test_streams(void) {
 int main(int argc, char** argv) {
     const char* data_dir = argc > 1 ? argv[1] : ".";
     CHECK(strcmp(ls_last_error(), "") == 0); /* nothing failed yet on this thread */
+    const char* tmp = getenv("TMPDIR");
+    snprintf(scratch_dir, sizeof scratch_dir, "%s/loopsurf-api-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(scratch_dir)) {
+        fprintf(stderr, "cannot make a scratch directory %s\n", scratch_dir);
+        return 1;
+    }
     test_version_and_strings();
     test_nets(data_dir);
     test_queries();
@@ -567,6 +634,10 @@ int main(int argc, char** argv) {
     test_mesh();
     test_adapt();
     test_streams();
+    const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",
+                           "api_test_flat.off"};
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) remove(scratch(names[i]));
+    CHECK(rmdir(scratch_dir) == 0);
     if (failures) {
         fprintf(stderr, "%d checks failed\n", failures);
         return 1;
