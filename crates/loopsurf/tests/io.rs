@@ -781,7 +781,33 @@ fn vtu_writer() {
     let opens = text.matches("<DataArray").count();
     assert_eq!(opens, text.matches("</DataArray>").count());
     assert_eq!(opens, 7);
+    // Without data arrays: points, connectivity, offsets and types read back
+    // (bit for bit: the numbers are written shortest round-trip).
     write_mesh(&d.join("plain.vtu"), &points, &OUT_TRIS).unwrap();
+    let plain = std::fs::read_to_string(d.join("plain.vtu")).unwrap();
+    assert!(plain.contains("NumberOfPoints=\"5\" NumberOfCells=\"3\""));
+    assert_eq!(plain.matches("<DataArray").count(), 4);
+    let array = |name: &str| -> Vec<String> {
+        let start = plain
+            .find(&format!("Name=\"{name}\""))
+            .unwrap_or_else(|| panic!("{name}"));
+        let body = &plain[start..];
+        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+        body.split_whitespace().map(str::to_string).collect()
+    };
+    let xyz: Vec<f64> = array("Points").iter().map(|x| x.parse().unwrap()).collect();
+    let read_back: Vec<DVec3> = xyz
+        .chunks(3)
+        .map(|c| DVec3::new(c[0], c[1], c[2]))
+        .collect();
+    same_bits(&points, &read_back);
+    let connectivity: Vec<i64> = array("connectivity")
+        .iter()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(connectivity, as_i64(&OUT_TRIS).concat());
+    assert_eq!(array("offsets"), ["3", "6", "9"]);
+    assert_eq!(array("types"), ["5", "5", "5"]);
 
     let short = [1.0];
     let err = write_vtu(
