@@ -27,12 +27,16 @@ use crate::error::{Error, Result};
 /// four bytes). Indices become 0-based; component IDs go to
 /// [`MeshData::components`].
 pub fn read_tri(path: &Path) -> Result<MeshData> {
-    let data = read_bytes(path)?;
+    parse_tri(&read_bytes(path)?, path)
+}
+
+/// [`read_tri`] of bytes already read; `path` names them in errors.
+pub(crate) fn parse_tri(data: &[u8], path: &Path) -> Result<MeshData> {
     let head = data.get(..4).map(|b| [b[0], b[1], b[2], b[3]]);
     match head {
-        Some(b) if matches!(i32::from_le_bytes(b), 8 | 12) => read_binary(&data, false),
-        Some(b) if matches!(i32::from_be_bytes(b), 8 | 12) => read_binary(&data, true),
-        _ => read_ascii(&data),
+        Some(b) if matches!(i32::from_le_bytes(b), 8 | 12) => read_binary(data, false),
+        Some(b) if matches!(i32::from_be_bytes(b), 8 | 12) => read_binary(data, true),
+        _ => read_ascii(data),
     }
     .map_err(|e| e.in_file(path, None))
 }

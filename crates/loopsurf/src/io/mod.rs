@@ -89,12 +89,25 @@ impl Format {
 /// Reads a surface triangulation, choosing the format from the extension
 /// (`.off`, `.obj`, `.ply`, `.stl`, `.tri`; case-insensitive).
 pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
+    // An unknown extension is refused before the file is read.
+    if matches!(Format::of(path), None | Some(Format::Vtu)) {
+        return Err(Error::UnknownFormat {
+            path: path.to_path_buf(),
+        });
+    }
+    parse_mesh(read_bytes(path)?, path, opts)
+}
+
+/// [`read_mesh`] of bytes already in memory (a file received over MPI, a
+/// fuzzer's input): the format is the one `path`'s extension names, and
+/// `path` names the source in errors; nothing is read from disk.
+pub fn parse_mesh(data: Vec<u8>, path: &Path, opts: &ReadOptions) -> Result<MeshData> {
     match Format::of(path) {
-        Some(Format::Off) => read_off(path, opts),
-        Some(Format::Obj) => read_obj(path, opts),
-        Some(Format::Ply) => read_ply(path, opts),
-        Some(Format::Stl) => read_stl(path),
-        Some(Format::Tri) => read_tri(path),
+        Some(Format::Off) => off::parse_off(&data, opts, path),
+        Some(Format::Obj) => obj::parse_obj(&data, opts, path),
+        Some(Format::Ply) => ply::parse_ply(&data, opts, path),
+        Some(Format::Stl) => stl::parse_stl(data, path),
+        Some(Format::Tri) => cart3d::parse_tri(&data, path),
         Some(Format::Vtu) | None => Err(Error::UnknownFormat {
             path: path.to_path_buf(),
         }),

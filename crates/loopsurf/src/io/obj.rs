@@ -21,7 +21,7 @@ pub fn read_obj(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
     parse_obj(&read_bytes(path)?, opts, path)
 }
 
-fn parse_obj(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
+pub(crate) fn parse_obj(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
     let malformed = |e: Error| e.in_file(path, None);
     let mut mesh = MeshData::default();
     let mut faces = 0usize;

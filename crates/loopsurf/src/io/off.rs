@@ -20,7 +20,7 @@ pub fn read_off(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
     parse_off(&read_bytes(path)?, opts, path)
 }
 
-fn parse_off(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
+pub(crate) fn parse_off(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
     let malformed = |e: Error| e.in_file(path, None);
     let mut mesh = MeshData::default();
     let (mut first, mut counts_line) = (true, None);

@@ -99,7 +99,7 @@ struct HeaderScan {
     element_lines: Vec<(String, usize)>,
 }
 
-fn parse_ply(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
+pub(crate) fn parse_ply(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
     let located = |e: Error| e.in_file(path, None);
     let scan = scan_header(data).map_err(located)?;
     let parser = Parser::<Elem>::new();

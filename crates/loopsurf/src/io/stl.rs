@@ -28,7 +28,11 @@ use crate::error::{Error, Result};
 /// Reads an STL file and welds identical corners; [`MeshData::welded`]
 /// reports how many corners were merged away.
 pub fn read_stl(path: &Path) -> Result<MeshData> {
-    let mut data = read_bytes(path)?;
+    parse_stl(read_bytes(path)?, path)
+}
+
+/// [`read_stl`] of bytes already read; `path` names them in errors.
+pub(crate) fn parse_stl(mut data: Vec<u8>, path: &Path) -> Result<MeshData> {
     let mut welder = Welder::default();
     if is_binary(&data) {
         read_binary(&mut data, &mut welder)

@@ -172,7 +172,11 @@ impl Surface {
                         let piece = Piece::new(self, tri, level, corners);
                         // A special corner's region is bounded more tightly by
                         // the cell's container than by its own: split it now.
-                        search.open(piece, bound);
+                        // A polynomial's Bézier hull is tighter: queue it.
+                        match piece.shape {
+                            Shape::Corner { .. } => search.open(piece, bound),
+                            Shape::Poly(_) => search.add(piece, bound),
+                        }
                     }
                 }
                 Item::Piece(i) => {

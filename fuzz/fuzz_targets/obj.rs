@@ -1,0 +1,23 @@
+//! The .obj reader on arbitrary bytes, then the net it yields and, when it
+//! is small, its surface: errors are fine; panics, hangs and runaway
+//! allocations are not. Replayed on stable by
+//! crates/loopsurf/tests/fuzz_regressions.rs, which does the same.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use loopsurf::io::{parse_mesh, ReadOptions};
+use loopsurf::{ControlNet, Surface};
+
+fuzz_target!(|data: &[u8]| {
+    for triangulate in [false, true] {
+        let opts = ReadOptions { triangulate };
+        let Ok(mesh) = parse_mesh(data.to_vec(), std::path::Path::new("input.obj"), &opts) else {
+            continue;
+        };
+        if let Ok(net) = ControlNet::from_mesh_data(mesh) {
+            if net.triangles().len() <= 64 {
+                let _ = Surface::new(&net);
+            }
+        }
+    }
+});
