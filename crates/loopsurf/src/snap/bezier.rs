@@ -189,34 +189,25 @@ pub(crate) fn hessian_net(q: &Quartic, d: &Derivatives, p: DVec3) -> [[f64; 3]; 
         *x -= p * m[4][i];
     }
     let mut h = [[0.0; 3]; SEXTIC];
-    for ka in 0..=3 {
-        for ja in 0..=3 - ka {
-            let a = index(3, ja, ka);
-            for kb in 0..=3 {
-                for jb in 0..=3 - kb {
-                    let b = index(3, jb, kb);
-                    let e = &mut h[index(6, ja + jb, ka + kb)];
-                    e[0] += s[a].dot(s[b]);
-                    e[1] += s[a].dot(t[b]);
-                    e[2] += t[a].dot(t[b]);
+    // Coefficient a of a degree-`da` factor times coefficient b of a
+    // degree-`db` one lands on coefficient α + β of the product.
+    let mut convolve = |da: usize, db: usize, terms: &dyn Fn(usize, usize) -> [f64; 3]| {
+        for (ja, ka) in multi_indices(da) {
+            for (jb, kb) in multi_indices(db) {
+                let e = &mut h[index(6, ja + jb, ka + kb)];
+                let add = terms(index(da, ja, ka), index(db, jb, kb));
+                for (x, y) in e.iter_mut().zip(add) {
+                    *x += y;
                 }
             }
         }
-    }
-    for ka in 0..=4 {
-        for ja in 0..=4 - ka {
-            let a = index(4, ja, ka);
-            for kb in 0..=2 {
-                for jb in 0..=2 - kb {
-                    let b = index(2, jb, kb);
-                    let e = &mut h[index(6, ja + jb, ka + kb)];
-                    e[0] += r[a].dot(ss[b]);
-                    e[1] += r[a].dot(st[b]);
-                    e[2] += r[a].dot(tt[b]);
-                }
-            }
-        }
-    }
+    };
+    convolve(3, 3, &|a, b| {
+        [s[a].dot(s[b]), s[a].dot(t[b]), t[a].dot(t[b])]
+    });
+    convolve(4, 2, &|a, b| {
+        [r[a].dot(ss[b]), r[a].dot(st[b]), r[a].dot(tt[b])]
+    });
     for (g, e) in h.iter_mut().enumerate() {
         let w = 1.0 / m[6][g];
         for x in e.iter_mut() {
