@@ -117,8 +117,16 @@ program test_loopsurf
     call check(loopsurf_project(surf, p * 1.0001d0, tri, uv, tri2, uv2, q2, dist2) == LS_OK, "project")
     call check(loopsurf_snap(surf, p * 1.0001d0, tri, uv, q, dist) == LS_OK, "snap for project")
     call check(abs(dist2 - dist) < 1d-12 .and. tri2 >= 1 .and. tri2 <= 8, "projected = snapped")
+    call check(loopsurf_evaluate(surf, tri2, uv2(1), uv2(2), r) == LS_OK, "eval at projection")
+    call check(all(r(1:3) == q2), "projected point on the surface")
     call check(loopsurf_project(surf, p, 9, uv, tri2, uv2, q2, dist2) == LS_ERR_INDEX_OUT_OF_RANGE, &
         "project: bad triangle")
+    call check(loopsurf_project(surf, p, 0, uv, tri2, uv2, q2, dist2) == LS_ERR_INDEX_OUT_OF_RANGE, &
+        "project: triangle 0 (1-based)")
+    call check(loopsurf_project(surf, p, tri, [0.9d0, 0.9d0], tri2, uv2, q2, dist2) == LS_ERR_PARAMETER_OUT_OF_RANGE, &
+        "project: guess outside its triangle")
+    call check(loopsurf_project(surf, [ieee_nan(), 0d0, 0d0], tri, uv, tri2, uv2, q2, dist2) == LS_ERR_NOT_FINITE, &
+        "project: NaN point")
 
     ! Displacement interpolation passes through the original points.
     call check(ls_surface_build_interpolating(net, LS_INTERPOLATE_DISPLACEMENT, surf3) == LS_OK, "interpolating")

@@ -245,6 +245,23 @@ int ls_net_hard_edges(const ls_net *net, size_t *n, int32_t **pairs);
 // Frees a net (NULL is ignored). Surfaces built from it stay valid.
 void ls_net_free(ls_net *net);
 
+// The nearest LOCAL minimum of the distance to `xyz`, by Newton's method
+// with walking from the guess (`tri_guess`, `vw_guess`): no global search
+// and no certificate, for points a mesh generator or smoother has moved a
+// little, guessed from a neighbouring point. When the guess lies in
+// another basin of the distance, the answer is not the global closest
+// point (`ls_snap` is). Outputs as `ls_snap`'s, statuses as
+// `ls_snap_guess`'s (NULL pointer, triangle out of range, guess outside
+// its triangle, point not finite); nothing is written on failure.
+int ls_project(const ls_surface *surface,
+               const double *xyz,
+               int32_t tri_guess,
+               const double *vw_guess,
+               int32_t *tri,
+               double *vw,
+               double *xyz_out,
+               double *distance);
+
 // Writes the default options (tolerance 1e-12) into `options`.
 int ls_snap_options_default(ls_snap_options *options);
 
@@ -255,21 +272,6 @@ int ls_snap_certified(const ls_surface *surface,
                       const double *xyz,
                       const ls_snap_options *options,
                       ls_snap_result *result);
-
-// The nearest LOCAL minimum of the distance to `xyz`, by Newton's method
-// with walking from the guess (`tri_guess`, `vw_guess`): no global search
-// and no certificate, for points a mesh generator or smoother has moved a
-// little, guessed from a neighbouring point. When the guess lies in
-// another basin of the distance, the answer is not the global closest
-// point (`ls_snap` is). Outputs as `ls_snap`'s.
-int ls_project(const ls_surface *surface,
-               const double *xyz,
-               int32_t tri_guess,
-               const double *vw_guess,
-               int32_t *tri,
-               double *vw,
-               double *xyz_out,
-               double *distance);
 
 // The last failure on the calling thread, e.g. `"ls_evaluate: point (v, w)
 // = (0.8, 0.7) of triangle 12: outside the triangle ..."`; an empty string

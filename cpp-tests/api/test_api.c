@@ -371,6 +371,7 @@ static void test_queries(void) {
     CHECK(memcmp(r, px, sizeof px) == 0);
     ptri = -7;
     pd = SENTINEL;
+    pvw[0] = pvw[1] = px[0] = px[1] = px[2] = SENTINEL;
     EXPECT(ls_project(NULL, near_point, tri, uv, &ptri, pvw, px, &pd), LS_ERR_NULL_POINTER);
     EXPECT(ls_project(surface, NULL, tri, uv, &ptri, pvw, px, &pd), LS_ERR_NULL_POINTER);
     EXPECT(ls_project(surface, near_point, tri, NULL, &ptri, pvw, px, &pd), LS_ERR_NULL_POINTER);
@@ -380,7 +381,9 @@ static void test_queries(void) {
     EXPECT(ls_project(surface, near_point, -1, uv, &ptri, pvw, px, &pd), LS_ERR_INDEX_OUT_OF_RANGE);
     EXPECT(ls_project(surface, near_point, tri, bad_guess, &ptri, pvw, px, &pd), LS_ERR_PARAMETER_OUT_OF_RANGE);
     EXPECT(ls_project(surface, nan_point, tri, uv, &ptri, pvw, px, &pd), LS_ERR_NOT_FINITE);
-    CHECK(ptri == -7 && pd == SENTINEL);
+    CHECK(strstr(ls_last_error(), "ls_project") != NULL);
+    CHECK(ptri == -7 && pd == SENTINEL && pvw[0] == SENTINEL && pvw[1] == SENTINEL);
+    CHECK(px[0] == SENTINEL && px[1] == SENTINEL && px[2] == SENTINEL);
 
     /* Interpolating surfaces pass through the original points. */
     ls_surface* through = NULL;

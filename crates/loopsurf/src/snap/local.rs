@@ -11,6 +11,12 @@
 //! on boundaries, hard edges and corners are found as exactly as interior
 //! ones. At irregular vertices, where the parametrisation is singular,
 //! stalled steps are stretched and the walk goes on around the vertex.
+//!
+//! The walk is the whole cost of a local projection (`Surface::project`),
+//! so it spends evaluations sparingly: a step that leaves a triangle across
+//! a smooth edge is tried whole in the neighbour, and the solve stops once
+//! the predicted gain is lost in the round-off of f (taking that last step,
+//! evaluated for its position only).
 
 use crate::surface::{Chart, Evaluation, Surface};
 use glam::{DVec2, DVec3};
@@ -42,6 +48,10 @@ const STEP_TOLERANCE: f64 = 1e-15;
 /// has size 1; the error after it is of the order of its square).
 const CONVERGED_STEP: f64 = 1e-7;
 const MAX_HALVINGS: usize = 30;
+/// A bound on the round-off of an evaluated surface point relative to the
+/// size of the coordinates: the evaluator's sums lose a few units in the
+/// last place; this allows some 45.
+const POINT_ROUND_OFF: f64 = 1e-14;
 
 /// The part of a triangle's parameter domain a solve stays in: the whole
 /// triangle, or one cell of it. One constraint n · (v, w) ≥ c per side,
@@ -115,22 +125,37 @@ fn eval_at(chart: &mut Chart, uv: DVec2) -> Evaluation {
 /// steepest triangle of the vertex's fan; the walk ends where a hop gains
 /// nothing (a minimum on the edge itself, as on a crease) or at a boundary.
 pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -> (Snap, bool) {
-    let (mut tri, mut uv) = (tri, DVec2::new(v, w));
+    let mut start = Start::new(surface, tri, DVec2::new(v, w));
     let mut best: Option<(Snap, bool)> = None;
+    // Whether this solve goes on with a step carried into its triangle.
+    let mut carried = false;
     for _ in 0..=MAX_HOPS {
-        let (end, x, leaving, converged) = descend_in(surface, p, tri, uv, &Region::WHOLE);
-        let here = Snap {
-            tri,
-            v: end.x,
-            w: end.y,
-            point: x,
-            distance: (x - p).length(),
-            lower_bound: 0.0,
+        let tri = start.tri;
+        let (end, x, leaving, converged) = match descend_in(surface, p, start, &Region::WHOLE, true)
+        {
+            Exit::Stopped {
+                uv,
+                x,
+                leaving,
+                converged,
+            } => (uv, x, leaving, converged),
+            Exit::Carried(next) => {
+                // Nearer than where the solve began (the step passed the
+                // descent test), so nearer than anything found before.
+                best = Some((snap_at(next.tri, next.uv, next.e.x, p), false));
+                (start, carried) = (next, true);
+                continue;
+            }
         };
-        if best.is_some_and(|(b, _)| b.distance <= here.distance) {
+        let here = snap_at(tri, end, x, p);
+        // A hop that gains nothing ends the walk; a carried step's solve
+        // is one descent, which may end level with its start only where
+        // that was already the minimum (to round-off).
+        if !carried && best.is_some_and(|(b, _)| b.distance <= here.distance) {
             break;
         }
         best = Some((here, converged));
+        carried = false;
         // At a corner the descent may go on in any triangle of the fan. At
         // an irregular vertex the parametrisation is singular and Newton
         // stalls next to the corner instead, where its steps shrink with
@@ -142,11 +167,23 @@ pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -
                 .and_then(|k| downhill_around(surface, p, tri, k)),
         };
         match next {
-            Some((next, next_uv)) => (tri, uv) = (next, next_uv),
+            Some((next, next_uv)) => start = Start::new(surface, next, next_uv),
             None => break,
         }
     }
     best.expect("at least one descent")
+}
+
+/// The snap of the point `x` at `uv` of `tri`.
+fn snap_at(tri: usize, uv: DVec2, x: DVec3, p: DVec3) -> Snap {
+    Snap {
+        tri,
+        v: uv.x,
+        w: uv.y,
+        point: x,
+        distance: (x - p).length(),
+        lower_bound: 0.0,
+    }
 }
 
 /// The nearest point to `p` of the region of triangle `tri` (a local
@@ -159,16 +196,47 @@ pub(crate) fn descend_within(
     start: DVec2,
     region: &Region,
 ) -> (Snap, bool) {
-    let (end, x, _, converged) = descend_in(surface, p, tri, start, region);
-    let snap = Snap {
-        tri,
-        v: end.x,
-        w: end.y,
-        point: x,
-        distance: (x - p).length(),
-        lower_bound: 0.0,
-    };
-    (snap, converged)
+    let start = Start::new(surface, tri, start);
+    match descend_in(surface, p, start, region, false) {
+        Exit::Stopped {
+            uv, x, converged, ..
+        } => (snap_at(tri, uv, x, p), converged),
+        Exit::Carried(_) => unreachable!("only walks carry steps across edges"),
+    }
+}
+
+/// Where a solve starts: a point of a triangle, evaluated in the
+/// triangle's chart (by the neighbour that carried a step into it, or
+/// afresh).
+struct Start<'a> {
+    tri: usize,
+    chart: Chart<'a>,
+    uv: DVec2,
+    e: Evaluation,
+}
+
+impl<'a> Start<'a> {
+    fn new(surface: &'a Surface, tri: usize, uv: DVec2) -> Start<'a> {
+        let mut chart = surface.chart(tri).expect("a triangle of the net");
+        let e = eval_at(&mut chart, uv);
+        Start { tri, chart, uv, e }
+    }
+}
+
+/// How a solve in one triangle ended.
+enum Exit<'a> {
+    /// At a minimiser of the region (or out of iterations): its parameters
+    /// and point, the local edge the descent would cross if it rests on
+    /// one, and whether it converged.
+    Stopped {
+        uv: DVec2,
+        x: DVec3,
+        leaving: Option<usize>,
+        converged: bool,
+    },
+    /// A step went on across a smooth edge: the walk continues from its
+    /// end in the neighbour.
+    Carried(Start<'a>),
 }
 
 /// The parameters of the three corners.
@@ -211,21 +279,42 @@ fn downhill_around(
     steepest.map(|(_, t, at)| (t, at))
 }
 
-/// Projected Newton inside one triangle. Returns the minimiser found, the
-/// surface point there, if it sits on one edge and the descent direction
-/// crosses it that local edge, and whether it converged (false when the
-/// iterations ran out).
-fn descend_in(
-    surface: &Surface,
+/// Projected Newton inside one triangle, from an evaluated start: stops at
+/// the minimiser found (see [`Exit::Stopped`]), or hands a step on to a
+/// neighbour.
+///
+/// When `walk`ing (the region is the whole triangle and the caller goes on
+/// across edges), a step that leaves the triangle across a smooth edge is
+/// carried into the neighbour ([`carry`]); if it cannot be (it reaches past
+/// the neighbour too, or does not descend there), the step is cut short at
+/// the edge and, if Newton still wants to cross, the solve ends there,
+/// unconverged, for the caller to continue in the neighbour: sliding along
+/// the edge to the constrained minimum first only to leave it costs several
+/// evaluations. Across hard edges and boundaries, where the minimum may be
+/// that constrained one, the solve converges on the edge as it does in a
+/// cell.
+fn descend_in<'a>(
+    surface: &'a Surface,
     p: DVec3,
-    tri: usize,
-    start: DVec2,
+    start: Start<'a>,
     region: &Region,
-) -> (DVec2, DVec3, Option<usize>, bool) {
-    let mut chart = surface.chart(tri).expect("a triangle of the net");
-    let mut uv = start;
-    let mut e = eval_at(&mut chart, uv);
+    walk: bool,
+) -> Exit<'a> {
+    let Start {
+        tri,
+        mut chart,
+        mut uv,
+        mut e,
+    } = start;
+    let stopped = |uv, x, leaving| Exit::Stopped {
+        uv,
+        x,
+        leaving,
+        converged: true,
+    };
     let mut f = 0.5 * (e.x - p).length_squared();
+    // Whether the last step stopped short at the region's boundary.
+    let mut clipped = false;
     for _ in 0..MAX_ITERATIONS {
         let r = e.x - p;
         let g = DVec2::new(r.dot(e.xv), r.dot(e.xw));
@@ -265,32 +354,36 @@ fn descend_in(
             _ => None,
         }
         .filter(|&k| region.sides[k].0.dot(g) > 0.0);
-        let Some(step) = step.filter(|s| s.is_finite() && *s != DVec2::ZERO) else {
-            return (uv, e.x, crossing, true);
-        };
-        // Longest feasible multiple of the step.
-        let mut reach = f64::INFINITY;
-        for (n, off) in region.sides {
-            let rate = n.dot(step);
-            if rate < 0.0 {
-                reach = reach.min(((off - n.dot(uv)) / rate).max(0.0));
+        if let Some(k) = crossing {
+            let newton_leaves = region.sides[k].0.dot(newton) < 0.0;
+            if walk && clipped && newton_leaves && is_smooth_edge(surface, tri, k) {
+                return stopped(uv, e.x, crossing);
             }
         }
-        let mut alpha = reach.min(1.0);
+        let Some(step) = step.filter(|s| s.is_finite() && *s != DVec2::ZERO) else {
+            return stopped(uv, e.x, crossing);
+        };
+        // The longest feasible multiple of the step, up to the whole step.
+        let reach = step_reach(region, uv, step, 1.0);
+        let mut alpha = reach;
         // Close to a minimiser Newton converges quadratically: a step this
-        // small, or one whose predicted gain is at round-off level, leaves
-        // an error below round-off, so take it and stop. Unless the point
+        // small, or one whose predicted gain is lost in the round-off of f
+        // (where comparing values of f tells nothing), leaves an error
+        // below round-off, so take it and stop. Unless the point
         // is not stationary at all: next to an irregular vertex the
         // derivatives blow up or vanish and Newton's steps shrink while the
         // distance still falls — there the step is stretched.
         let slope = g.dot(step).min(0.0);
         let length = alpha * step.length();
-        if length <= CONVERGED_STEP || -alpha * slope <= 1e-14 * f {
+        let noise = f_round_off(e.x, p);
+        if length <= CONVERGED_STEP || -alpha * slope <= noise {
             let at_corner = CORNERS.iter().any(|c| (uv - *c).abs().max_element() < 1e-3);
-            if at_corner && !is_stationary(&e, r) && reach > alpha {
-                if let Some((t_uv, t_f)) =
-                    stretch(&mut chart, p, region, (uv, step), (alpha, reach), f)
-                {
+            if at_corner && !is_stationary(&e, r) {
+                let room = step_reach(region, uv, step, f64::INFINITY);
+                let stretched = (room > alpha)
+                    .then(|| stretch(&mut chart, p, region, (uv, step), (alpha, room), f))
+                    .flatten();
+                if let Some((t_uv, t_f)) = stretched {
                     uv = t_uv;
                     e = eval_at(&mut chart, uv);
                     f = t_f;
@@ -298,17 +391,25 @@ fn descend_in(
                 }
             }
             if length <= STEP_TOLERANCE {
-                return (uv, e.x, crossing, true);
+                return stopped(uv, e.x, crossing);
             }
             // The step is kept unless it loses more than round-off: its
             // end is the better stationary point even where the distances
             // tie to the last bits.
             let t_uv = region.clamp(uv + alpha * step);
             let t_x = chart.point(t_uv.x, t_uv.y).expect("inside");
-            if (t_x - p).length_squared() <= 2.0 * f * (1.0 + 1e-12) {
-                return (t_uv, t_x, crossing, true);
+            if 0.5 * (t_x - p).length_squared() <= f + noise {
+                return stopped(t_uv, t_x, crossing);
             }
-            return (uv, e.x, crossing, true);
+            return stopped(uv, e.x, crossing);
+        }
+        // Walking, a step that leaves the triangle across a smooth edge is
+        // tried whole in the neighbour: stopping at the edge would cost an
+        // evaluation there on each side.
+        if walk && reach < 1.0 {
+            if let Some(next) = carry(surface, p, tri, uv + step, f + 1e-4 * slope) {
+                return Exit::Carried(next);
+            }
         }
         // Backtrack until f decreases enough (Armijo).
         let mut moved = None;
@@ -323,11 +424,96 @@ fn descend_in(
             alpha *= 0.5;
         }
         let Some((t_uv, t_e, t_f)) = moved.filter(|m| m.0 != uv) else {
-            return (uv, e.x, crossing, true); // no decrease left: round-off floor
+            return stopped(uv, e.x, crossing); // no decrease left: round-off floor
         };
         (uv, e, f) = (t_uv, t_e, t_f);
+        clipped = reach < 1.0 && alpha >= reach;
     }
-    (uv, e.x, None, false)
+    Exit::Stopped {
+        uv,
+        x: e.x,
+        leaving: None,
+        converged: false,
+    }
+}
+
+/// The longest multiple t ≤ `cap` of `step` with uv + t·step in the
+/// region. Sides that the step does not reach before `cap` cost no
+/// division: near a minimiser, with `cap` the whole step, that is all of
+/// them.
+fn step_reach(region: &Region, uv: DVec2, step: DVec2, cap: f64) -> f64 {
+    let mut reach = cap;
+    for (n, off) in region.sides {
+        let rate = n.dot(step);
+        let slack = (n.dot(uv) - off).max(0.0);
+        if rate * reach < -slack {
+            reach = slack / -rate;
+        }
+    }
+    reach
+}
+
+/// The point at `target` (parameters of `tri` beyond one of its smooth
+/// edges), evaluated in the triangle across that edge, if it lies in it
+/// and f = ½|X − p|² there is at most `enough`.
+///
+/// Laid out as a parallelogram, the two triangles share one smooth
+/// parametrisation (the subdivision of one is that of the other continued),
+/// so a Newton step of one is a Newton step of the other — away from
+/// special vertices, and on surfaces without a displacement field, which
+/// kinks at every edge; the descent test guards those. With a, b the shared
+/// corners and c, d the far ones, d = a + b − c, so the point αa + βb + γc
+/// of `tri` (γ < 0 beyond the edge) is (α + γ)a + (β + γ)b − γd.
+fn carry<'a>(
+    surface: &'a Surface,
+    p: DVec3,
+    tri: usize,
+    target: DVec2,
+    enough: f64,
+) -> Option<Start<'a>> {
+    let weights = [1.0 - target.x - target.y, target.x, target.y];
+    // Beyond exactly one side: the one opposite the negative weight.
+    let mut negative = (0..3).filter(|&i| weights[i] < 0.0);
+    let (Some(far), None) = (negative.next(), negative.next()) else {
+        return None;
+    };
+    let edge = (far + 1) % 3; // local edge k joins corners k and k + 1
+    if !is_smooth_edge(surface, tri, edge) {
+        return None;
+    }
+    let topo = surface.net().topology();
+    let e = topo.triangle_edges()[tri][edge] as usize;
+    let [t0, t1] = topo.edge_triangles()[e];
+    let next = if t0 as usize == tri { t1 } else { t0 } as usize;
+    let (here, there) = (topo.triangles()[tri], topo.triangles()[next]);
+    let moved = there.map(|corner| match here.iter().position(|&c| c == corner) {
+        Some(i) => weights[i] + weights[far],
+        None => -weights[far],
+    });
+    if moved.iter().any(|&b| b < 0.0) {
+        return None; // beyond the neighbour as well
+    }
+    let start = Start::new(
+        surface,
+        next,
+        Region::WHOLE.clamp(DVec2::new(moved[1], moved[2])),
+    );
+    (0.5 * (start.e.x - p).length_squared() <= enough).then_some(start)
+}
+
+/// The round-off of f = ½|x − p|² as evaluated: that of the point, times
+/// the distance. Differences of f below it are noise.
+fn f_round_off(x: DVec3, p: DVec3) -> f64 {
+    let eps = POINT_ROUND_OFF * x.abs().max(p.abs()).max_element();
+    eps * ((x - p).length() + eps)
+}
+
+/// Whether local edge `k` of `tri` joins it smoothly to a neighbour (is
+/// neither hard nor on the boundary).
+fn is_smooth_edge(surface: &Surface, tri: usize, k: usize) -> bool {
+    let net = surface.net();
+    let edge = net.topology().triangle_edges()[tri][k] as usize;
+    !net.features().is_hard_edge(edge)
 }
 
 /// Whether the residual r = X − p is normal to the surface (within a

@@ -19,9 +19,23 @@ impl Surface {
     /// (a mesh vertex moved by a smoother, a new edge midpoint);
     /// [`Surface::closest_point`] is the global, certified answer.
     /// `lower_bound` is 0: nothing is proven.
+    ///
+    /// Errors, as for [`Surface::snap_near`]: a point that is not finite
+    /// ([`Error::InvalidArgument`](crate::Error::InvalidArgument)), a
+    /// triangle out of range, or a guess (v, w) outside its triangle
+    /// ([`Error::BadParameter`](crate::Error::BadParameter)); round-off
+    /// outside it is clamped.
     pub fn project(&self, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
         check_point(p)?;
-        let (v, w) = self.checked_guess(tri, v, w)?;
+        // Checked like `snap_near`'s guess, without evaluating it: the
+        // descent's first evaluation is the guess's.
+        self.validate(tri, v, w)?;
+        let (v, w) = (v.max(0.0), w.max(0.0));
+        let (v, w) = if v + w > 1.0 {
+            (v / (v + w), w / (v + w))
+        } else {
+            (v, w)
+        };
         Ok(local::descend(self, p, tri, v, w).0)
     }
 }
