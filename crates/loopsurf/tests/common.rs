@@ -2,7 +2,7 @@
 //! meshes cached by the test script.
 #![allow(dead_code)]
 
-use loopsurf::ControlNet;
+use loopsurf::{ControlNet, DVec3};
 use std::path::PathBuf;
 
 #[path = "support/cgal_data.rs"]
@@ -28,4 +28,32 @@ pub fn example(name: &str, angle: Option<f64>) -> ControlNet {
         net.tag_by_angle(a).unwrap();
     }
     net
+}
+
+/// Deterministic pseudo-random numbers in [0, 1), for reproducible queries.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A point of the box [lo, hi].
+    pub fn point_in(&mut self, lo: DVec3, hi: DVec3) -> DVec3 {
+        lo + (hi - lo) * DVec3::new(self.next(), self.next(), self.next())
+    }
+
+    /// A random unit vector.
+    pub fn direction(&mut self) -> DVec3 {
+        loop {
+            let d = DVec3::new(self.next(), self.next(), self.next()) * 2.0 - 1.0;
+            if (0.01..=1.0).contains(&d.length_squared()) {
+                return d.normalize();
+            }
+        }
+    }
 }

@@ -7,29 +7,8 @@
 
 mod common;
 
-use common::{cgal_mesh, example};
+use common::{cgal_mesh, example, Lcg};
 use loopsurf::{ControlNet, DVec3, Error, Snap, Surface};
-
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A random unit vector.
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let d = DVec3::new(self.next(), self.next(), self.next()) * 2.0 - 1.0;
-            if (0.01..=1.0).contains(&d.length_squared()) {
-                return d.normalize();
-            }
-        }
-    }
-}
 
 /// What the checks of one surface found.
 #[derive(Default)]

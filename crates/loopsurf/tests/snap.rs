@@ -4,23 +4,8 @@
 
 mod common;
 
-use common::{cgal_mesh, example};
+use common::{cgal_mesh, example, Lcg};
 use loopsurf::{ControlNet, DVec3, Snap, Surface, SurfaceMode};
-
-/// Deterministic pseudo-random numbers in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn point_in(&mut self, lo: DVec3, hi: DVec3) -> DVec3 {
-        lo + (hi - lo) * DVec3::new(self.next(), self.next(), self.next())
-    }
-}
 
 struct Reference {
     samples: Vec<(DVec3, usize, f64, f64)>,

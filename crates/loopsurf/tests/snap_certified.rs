@@ -10,29 +10,9 @@
 
 mod common;
 
-use common::{bicone, cgal_mesh, example};
+use common::{bicone, cgal_mesh, example, Lcg};
 use loopsurf::{ControlNet, DVec3, Surface, SurfaceMode, VertexKind};
 use rayon::prelude::*;
-
-/// Deterministic pseudo-random numbers in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let d = DVec3::new(self.next(), self.next(), self.next()) * 2.0 - 1.0;
-            if d.length_squared() > 1e-3 && d.length_squared() <= 1.0 {
-                return d.normalize();
-            }
-        }
-    }
-}
 
 /// Samples per side of a control triangle.
 const LATTICE: usize = 24;
