@@ -30,6 +30,13 @@ module loopsurf
     integer(c_int), parameter :: LS_ERR_INTERNAL = -12
     integer(c_int), parameter :: LS_INTERPOLATE_SOLVE = 1
     integer(c_int), parameter :: LS_INTERPOLATE_DISPLACEMENT = 2
+    !> Flags of ls_net_load_with / loopsurf_load_with (sum them).
+    integer(c_int32_t), parameter :: LS_LOAD_TRIANGULATE = 1
+    integer(c_int32_t), parameter :: LS_LOAD_WELD = 2
+    integer(c_int32_t), parameter :: LS_LOAD_ORIENT = 4
+    integer(c_int32_t), parameter :: LS_LOAD_SPLIT_NONMANIFOLD = 8
+    integer(c_int32_t), parameter :: LS_LOAD_ALLOW_DEGENERATE = 16
+    integer(c_int32_t), parameter :: LS_LOAD_REPAIR = 31
 
     !> Options of ls_snap_certified (fill with ls_snap_options_default).
     type, bind(C) :: ls_snap_options
@@ -49,6 +56,20 @@ module loopsurf
             import :: c_int, c_char, c_ptr
             character(kind=c_char), intent(in) :: path(*)
             type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_net_load_with(path, flags, weld_eps, out) bind(C, name="ls_net_load_with")
+            import :: c_int, c_char, c_ptr, c_int32_t, c_double
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int32_t), value :: flags
+            real(c_double), value :: weld_eps
+            type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_net_repair_report(net, buf, size, needed) bind(C, name="ls_net_repair_report")
+            import :: c_int, c_char, c_ptr, c_size_t
+            type(c_ptr), value :: net
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_size_t), value :: size
+            integer(c_size_t), intent(out) :: needed
         end function
         integer(c_int) function ls_net_from_arrays(nverts, xyz, ntris, tris, out) &
                 bind(C, name="ls_net_from_arrays")
@@ -262,6 +283,37 @@ contains
         character(len=*), intent(in) :: path
         type(c_ptr), intent(out) :: net
         status = ls_net_load(c_string(path), net)
+    end function
+
+    !> loopsurf_load with repairs of dirty files: flags is a sum of
+    !> LS_LOAD_*, weld_eps the weld distance (fraction of the diagonal, 0
+    !> for the default) used with LS_LOAD_WELD.
+    integer function loopsurf_load_with(path, flags, weld_eps, net) result(status)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: flags
+        real(c_double), intent(in) :: weld_eps
+        type(c_ptr), intent(out) :: net
+        status = ls_net_load_with(c_string(path), int(flags, c_int32_t), weld_eps, net)
+    end function
+
+    !> What the repairs of loopsurf_load_with changed, one line per repair
+    !> (new_line('a')-separated; empty when nothing changed).
+    function loopsurf_repair_report(net) result(report)
+        type(c_ptr), intent(in) :: net
+        character(len=:), allocatable :: report
+        character(kind=c_char) :: probe(1)
+        character(kind=c_char), allocatable :: buf(:)
+        integer(c_size_t) :: needed
+        integer :: i, n
+        report = ""
+        if (ls_net_repair_report(net, probe, 1_c_size_t, needed) /= LS_OK) return
+        allocate(buf(needed))
+        if (ls_net_repair_report(net, buf, needed, needed) /= LS_OK) return
+        n = int(needed) - 1
+        report = repeat(" ", n)
+        do i = 1, n
+            report(i:i) = buf(i)
+        end do
     end function
 
     !> A net from points xyz(3, nverts) and triangles tris(3, ntris) with

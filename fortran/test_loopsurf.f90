@@ -12,6 +12,9 @@ program test_loopsurf
     integer(c_size_t) :: n, nv, nt, nh
     type(c_ptr) :: net, net2, surf, surf2, surf3, bytes, rxyz, rtris, mtri, mvw
     integer(c_int) :: major, minor, patch
+    type(c_ptr) :: net3
+    character(len=1024) :: tmpdir, path
+    integer :: unit
 
     failures = 0
     xyz = reshape([1d0, 0d0, 0d0, -1d0, 0d0, 0d0, 0d0, 1d0, 0d0, &
@@ -133,6 +136,24 @@ program test_loopsurf
     call check(loopsurf_evaluate(surf3, 1, 0d0, 0d0, r) == LS_OK, "eval at corner")
     call check(all(r(1:3) == xyz(:, 1)), "through the original point")
     call check(ls_surface_build_interpolating(net, 7_c_int, surf3) == LS_ERR_INVALID_ARGUMENT, "bad mode")
+
+    ! A dirty file: the octahedron with two triangles turned, refused
+    ! plainly and repaired with LS_LOAD_ORIENT, which says what it did.
+    call get_environment_variable("TMPDIR", tmpdir)
+    if (len_trim(tmpdir) == 0) tmpdir = "/tmp"
+    write(path, '(a, a, i0, a)') trim(tmpdir), "/loopsurf_fortran_", getpid(), ".off"
+    open(newunit=unit, file=trim(path), status="replace", action="write")
+    write(unit, '(a)') "OFF", "6 8 0", "1 0 0", "-1 0 0", "0 1 0", "0 -1 0", "0 0 1", "0 0 -1", &
+        "3 0 4 2", "3 2 1 4", "3 1 3 4", "3 3 0 4", "3 2 0 5", "3 2 1 5", "3 3 1 5", "3 0 3 5"
+    close(unit)
+    call check(loopsurf_load(trim(path), net3) == LS_ERR_NON_MANIFOLD, "shuffled refused")
+    call check(index(loopsurf_last_error(), "LS_LOAD_ORIENT") > 0, "names the flag")
+    call check(loopsurf_load_with(trim(path), LS_LOAD_ORIENT, 0d0, net3) == LS_OK, "load_with orient")
+    call check(loopsurf_repair_report(net3) == "orient: flipped 2 of the 8 triangles of the piece of " // &
+        "triangle 0 (closed: now facing outward)", "repair report")
+    call ls_net_free(net3)
+    open(newunit=unit, file=trim(path), status="old")
+    close(unit, status="delete")
 
     call ls_version(major, minor, patch)
     call check(major == 0 .and. minor >= 1, "version")

@@ -17,6 +17,29 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// `ls_net_load_with` flag: split polygon faces into triangles (ear
+// clipping) instead of refusing them.
+#define LS_LOAD_TRIANGULATE 1
+
+// `ls_net_load_with` flag: merge each vertex on an open edge into the
+// first earlier one within `weld_eps` × the bounding-box diagonal.
+#define LS_LOAD_WELD 2
+
+// `ls_net_load_with` flag: make triangle orientation consistent in each
+// connected piece (outward for closed pieces).
+#define LS_LOAD_ORIENT 4
+
+// `ls_net_load_with` flag: give a vertex where separate fans of triangles
+// touch one copy per fan (copies are appended to the vertices).
+#define LS_LOAD_SPLIT_NONMANIFOLD 8
+
+// `ls_net_load_with` flag: keep zero-area triangles instead of refusing
+// them; their edges are never tagged by angle.
+#define LS_LOAD_ALLOW_DEGENERATE 16
+
+// `ls_net_load_with` flags: every repair (the CLI's `--repair`).
+#define LS_LOAD_REPAIR 31
+
 // Success.
 #define LS_OK 0
 
@@ -212,6 +235,20 @@ int ls_mesh(const ls_surface *surface,
 // Reads and validates a mesh file (.off .obj .ply .stl .tri, by extension)
 // into a new net. Errors name the file and, for text formats, the line.
 int ls_net_load(const char *path, ls_net **out);
+
+// [`ls_net_load`] with repairs of dirty files: `flags` is a sum of
+// `LS_LOAD_*`; `weld_eps` is the weld distance as a fraction of the
+// bounding-box diagonal, used with `LS_LOAD_WELD` (0 for the default,
+// 1e-6). What the repairs changed is read back with
+// `ls_net_repair_report`; nothing changes unless a flag asks for it.
+int ls_net_load_with(const char *path, uint32_t flags, double weld_eps, ls_net **out);
+
+// What the repairs of `ls_net_load_with` changed, one line per repair
+// (`\n`-separated, empty when nothing changed), copied NUL-terminated
+// into `buf` of `size` bytes (truncated to fit; `buf` may be NULL when
+// `size` is 0). `needed` (may be NULL) receives the full length plus one:
+// call with size 0 to learn it.
+int ls_net_repair_report(const ls_net *net, char *buf, size_t size, size_t *needed);
 
 // Builds a net from `nverts` points (`xyz`, 3 × nverts doubles) and
 // `ntris` counter-clockwise triangles (`tris`, 3 × ntris 0-based indices),

@@ -217,6 +217,73 @@ static void test_nets(const char* data_dir) {
     ls_net_free(net);
 }
 
+/* Repairs of dirty files: refused plainly, loaded with the flag that names
+   the problem, and every change reported. */
+static void test_repairs(const char* data_dir) {
+    ls_net* net = NULL;
+    char path[4096], report[256];
+    size_t nv, nt, needed = 0;
+
+    /* The octahedron with two triangles turned. */
+    const char* shuffled = write_file("api_shuffled.off",
+                                      "OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
+                                      "3 0 4 2\n3 2 1 4\n3 1 3 4\n3 3 0 4\n"
+                                      "3 2 0 5\n3 2 1 5\n3 3 1 5\n3 0 3 5\n");
+    EXPECT(ls_net_load(shuffled, &net), LS_ERR_NON_MANIFOLD);
+    CHECK(strstr(ls_last_error(), "LS_LOAD_ORIENT") != NULL);
+    EXPECT(ls_net_load_with(shuffled, 64, 0.0, &net), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "unknown bits 0x40") != NULL);
+    EXPECT(ls_net_load_with(shuffled, LS_LOAD_WELD, -1.0, &net), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_net_load_with(shuffled, LS_LOAD_ORIENT, 0.0, &net), LS_OK);
+    EXPECT(ls_net_repair_report(net, NULL, 0, &needed), LS_OK);
+    EXPECT(ls_net_repair_report(net, report, sizeof report, NULL), LS_OK);
+    CHECK(needed == strlen(report) + 1);
+    CHECK(strcmp(report,
+                 "orient: flipped 2 of the 8 triangles of the piece of triangle 0 (closed: now facing outward)") == 0);
+    /* Truncated to the buffer, still terminated. */
+    EXPECT(ls_net_repair_report(net, report, 7, NULL), LS_OK);
+    CHECK(strcmp(report, "orient") == 0);
+    EXPECT(ls_net_repair_report(net, NULL, 7, NULL), LS_ERR_NULL_POINTER);
+    /* The repaired octahedron is the outward one: its surface evaluates
+       with outward normals. */
+    ls_surface* surface = NULL;
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+    double n[3], r[18];
+    for (int t = 0; t < 8; t++) {
+        EXPECT(ls_evaluate(surface, t, 0.25, 0.25, r), LS_OK);
+        EXPECT(ls_normal(surface, t, 0.25, 0.25, n), LS_OK);
+        CHECK(n[0] * r[0] + n[1] * r[1] + n[2] * r[2] > 0);
+    }
+    ls_surface_free(surface);
+    ls_net_free(net);
+
+    /* A plain net reports nothing. */
+    snprintf(path, sizeof path, "%s/pig.off", data_dir);
+    EXPECT(ls_net_load_with(path, LS_LOAD_REPAIR, 0.0, &net), LS_OK);
+    EXPECT(ls_net_repair_report(net, report, sizeof report, &needed), LS_OK);
+    CHECK(needed == 1 && report[0] == '\0');
+    ls_net_free(net);
+
+    /* pig.stl joins two fans at vertex 90; the split appends a vertex. */
+    snprintf(path, sizeof path, "%s/pig.stl", data_dir);
+    EXPECT(ls_net_load(path, &net), LS_ERR_NON_MANIFOLD);
+    CHECK(strstr(ls_last_error(), "vertex 90") != NULL);
+    EXPECT(ls_net_load_with(path, LS_LOAD_SPLIT_NONMANIFOLD, 0.0, &net), LS_OK);
+    EXPECT(ls_net_counts(net, &nv, &nt, NULL), LS_OK);
+    CHECK(nt == 16848);
+    EXPECT(ls_net_repair_report(net, report, sizeof report, NULL), LS_OK);
+    CHECK(strncmp(report, "split-nonmanifold:", 18) == 0 && strstr(report, "90 ") != NULL);
+    ls_net_free(net);
+
+    /* CGAL's mpi.off has non-convex polygons: split by ear clipping. */
+    snprintf(path, sizeof path, "%s/mpi.off", data_dir);
+    EXPECT(ls_net_load(path, &net), LS_ERR_PARSE);
+    EXPECT(ls_net_load_with(path, LS_LOAD_TRIANGULATE, 0.0, &net), LS_OK);
+    EXPECT(ls_net_counts(net, &nv, &nt, NULL), LS_OK);
+    CHECK(nv == 90 && nt == 180);
+    ls_net_free(net);
+}
+
 static void test_queries(void) {
     ls_net* net = NULL;
     ls_surface* surface = octahedron(&net);
@@ -632,13 +699,14 @@ int main(int argc, char** argv) {
     }
     test_version_and_strings();
     test_nets(data_dir);
+    test_repairs(data_dir);
     test_queries();
     test_refine();
     test_mesh();
     test_adapt();
     test_streams();
     const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",
-                           "api_test_flat.off"};
+                           "api_test_flat.off", "api_shuffled.off"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++) remove(scratch(names[i]));
     CHECK(rmdir(scratch_dir) == 0);
     if (failures) {

@@ -10,7 +10,7 @@ use loopsurf::{ControlNet, Surface};
 
 fuzz_target!(|data: &[u8]| {
     for triangulate in [false, true] {
-        let opts = ReadOptions { triangulate };
+        let opts = ReadOptions { triangulate, ..Default::default() };
         let Ok(mesh) = parse_mesh(data.to_vec(), std::path::Path::new("input.ply"), &opts) else {
             continue;
         };

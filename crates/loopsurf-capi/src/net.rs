@@ -3,6 +3,8 @@
 use crate::ls_net;
 use crate::status::{input, input_mut, output, run, run_void, Fail};
 use crate::status::{LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE};
+use loopsurf::io::ReadOptions;
+use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, DVec3};
 use std::ffi::{c_char, c_int, CStr, OsStr};
 use std::os::unix::ffi::OsStrExt;
@@ -16,6 +18,99 @@ pub unsafe extern "C" fn ls_net_load(path: *const c_char, out: *mut *mut ls_net)
         let out = output(out, "out")?;
         let net = ControlNet::read(OsStr::from_bytes(path.to_bytes()))?;
         *out = Box::into_raw(Box::new(ls_net(net)));
+        Ok(())
+    })
+}
+
+/// `ls_net_load_with` flag: split polygon faces into triangles (ear
+/// clipping) instead of refusing them.
+pub const LS_LOAD_TRIANGULATE: u32 = 1;
+/// `ls_net_load_with` flag: merge each vertex on an open edge into the
+/// first earlier one within `weld_eps` × the bounding-box diagonal.
+pub const LS_LOAD_WELD: u32 = 2;
+/// `ls_net_load_with` flag: make triangle orientation consistent in each
+/// connected piece (outward for closed pieces).
+pub const LS_LOAD_ORIENT: u32 = 4;
+/// `ls_net_load_with` flag: give a vertex where separate fans of triangles
+/// touch one copy per fan (copies are appended to the vertices).
+pub const LS_LOAD_SPLIT_NONMANIFOLD: u32 = 8;
+/// `ls_net_load_with` flag: keep zero-area triangles instead of refusing
+/// them; their edges are never tagged by angle.
+pub const LS_LOAD_ALLOW_DEGENERATE: u32 = 16;
+/// `ls_net_load_with` flags: every repair (the CLI's `--repair`).
+pub const LS_LOAD_REPAIR: u32 = 31;
+
+/// [`ls_net_load`] with repairs of dirty files: `flags` is a sum of
+/// `LS_LOAD_*`; `weld_eps` is the weld distance as a fraction of the
+/// bounding-box diagonal, used with `LS_LOAD_WELD` (0 for the default,
+/// 1e-6). What the repairs changed is read back with
+/// `ls_net_repair_report`; nothing changes unless a flag asks for it.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_load_with(
+    path: *const c_char,
+    flags: u32,
+    weld_eps: f64,
+    out: *mut *mut ls_net,
+) -> c_int {
+    run("ls_net_load_with", || {
+        let path = CStr::from_ptr(input(path, "path")?);
+        let out = output(out, "out")?;
+        if flags & !LS_LOAD_REPAIR != 0 {
+            return Err(Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("flags {flags:#x}: unknown bits {:#x}", flags & !LS_LOAD_REPAIR),
+            ));
+        }
+        let on = |flag: u32| flags & flag != 0;
+        let weld = if weld_eps == 0.0 {
+            loopsurf::repair::DEFAULT_WELD
+        } else {
+            weld_eps
+        };
+        let opts = ReadOptions {
+            triangulate: on(LS_LOAD_TRIANGULATE),
+            repairs: Repairs {
+                weld: on(LS_LOAD_WELD).then_some(weld),
+                orient: on(LS_LOAD_ORIENT),
+                split_nonmanifold: on(LS_LOAD_SPLIT_NONMANIFOLD),
+                allow_degenerate: on(LS_LOAD_ALLOW_DEGENERATE),
+            },
+        };
+        let net = ControlNet::read_with(OsStr::from_bytes(path.to_bytes()), &opts)?;
+        *out = Box::into_raw(Box::new(ls_net(net)));
+        Ok(())
+    })
+}
+
+/// What the repairs of `ls_net_load_with` changed, one line per repair
+/// (`\n`-separated, empty when nothing changed), copied NUL-terminated
+/// into `buf` of `size` bytes (truncated to fit; `buf` may be NULL when
+/// `size` is 0). `needed` (may be NULL) receives the full length plus one:
+/// call with size 0 to learn it.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_repair_report(
+    net: *const ls_net,
+    buf: *mut c_char,
+    size: usize,
+    needed: *mut usize,
+) -> c_int {
+    run("ls_net_repair_report", || {
+        let net = &input(net, "net")?.0;
+        let text: Vec<String> = net.repairs().iter().map(|r| r.to_string()).collect();
+        let text = text.join("\n");
+        if !needed.is_null() {
+            *needed = text.len() + 1;
+        }
+        if size > 0 {
+            let buf = output(buf, "buf")? as *mut c_char;
+            // Truncated on a character boundary: the text is UTF-8.
+            let mut n = text.len().min(size - 1);
+            while !text.is_char_boundary(n) {
+                n -= 1;
+            }
+            std::ptr::copy_nonoverlapping(text.as_ptr().cast::<c_char>(), buf, n);
+            *buf.add(n) = 0;
+        }
         Ok(())
     })
 }

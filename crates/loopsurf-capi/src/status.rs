@@ -68,7 +68,8 @@ fn code_of(err: &Error) -> c_int {
         Error::NonManifoldEdge { .. }
         | Error::NonManifoldVertex { .. }
         | Error::InteriorValenceTwo { .. }
-        | Error::InconsistentOrientation { .. } => LS_ERR_NON_MANIFOLD,
+        | Error::InconsistentOrientation { .. }
+        | Error::NonOrientable { .. } => LS_ERR_NON_MANIFOLD,
         Error::EmptyMesh { .. }
         | Error::RepeatedIndex { .. }
         | Error::ZeroArea { .. }

@@ -14,9 +14,29 @@ pub struct Input {
     /// A built-in control net instead of a file (viking, sphere, torus, cube, ...).
     #[arg(long, value_name = "NAME", conflicts_with = "mesh")]
     pub example: Option<String>,
-    /// Fan-split polygons into triangles instead of rejecting them.
+    /// Split polygons into triangles (ear clipping) instead of rejecting them.
     #[arg(long, conflicts_with = "example")]
     pub triangulate: bool,
+    /// Merge each vertex into the first earlier vertex within EPS × the
+    /// bounding-box diagonal (nearly equal STL corners); drops the triangles
+    /// that collapse or repeat.
+    #[arg(long, value_name = "EPS", conflicts_with = "example")]
+    pub weld: Option<f64>,
+    /// Make triangle orientation consistent in each connected piece
+    /// (outward for closed pieces).
+    #[arg(long, conflicts_with = "example")]
+    pub orient: bool,
+    /// Give a vertex where separate fans of triangles touch one copy per fan.
+    #[arg(long, conflicts_with = "example")]
+    pub split_nonmanifold: bool,
+    /// Keep zero-area triangles instead of refusing them (their edges are
+    /// never tagged by angle).
+    #[arg(long, conflicts_with = "example")]
+    pub allow_degenerate: bool,
+    /// All of --triangulate --orient --split-nonmanifold --allow-degenerate
+    /// and --weld 1e-6 (unless --weld says otherwise).
+    #[arg(long, conflicts_with = "example")]
+    pub repair: bool,
     /// Tag every edge whose dihedral angle exceeds DEG degrees as hard.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub hard_angle: Option<f64>,
@@ -49,15 +69,35 @@ impl Input {
         )
     }
 
-    /// Reads or builds the net and applies the feature flags.
+    /// The reading and repair flags as library options.
+    fn read_options(&self) -> ReadOptions {
+        let mut opts = if self.repair {
+            ReadOptions::repair_all()
+        } else {
+            ReadOptions::default()
+        };
+        opts.triangulate |= self.triangulate;
+        let r = &mut opts.repairs;
+        r.orient |= self.orient;
+        r.split_nonmanifold |= self.split_nonmanifold;
+        r.allow_degenerate |= self.allow_degenerate;
+        if self.weld.is_some() {
+            r.weld = self.weld;
+        }
+        opts
+    }
+
+    /// Reads or builds the net, reports the repairs made (stderr), and
+    /// applies the feature flags.
     pub fn load(&self) -> Result<ControlNet, Error> {
         let mut net = match (&self.mesh, &self.example) {
-            (Some(path), _) => ControlNet::read_with(
-                path,
-                &ReadOptions {
-                    triangulate: self.triangulate,
-                },
-            )?,
+            (Some(path), _) => {
+                let net = ControlNet::read_with(path, &self.read_options())?;
+                for change in net.repairs() {
+                    eprintln!("loopsurf: {}: {change}", path.display());
+                }
+                net
+            }
             (None, Some(name)) => {
                 let ex = examples::by_name(name).ok_or_else(|| {
                     Error::InvalidArgument(format!(

@@ -578,3 +578,31 @@ fn adapt_rejects_bad_options_with_one_line() {
         "--output",
     );
 }
+
+#[test]
+fn repairs_are_asked_for_and_reported() {
+    // The octahedron with two triangles turned.
+    let path = scratch("shuffled.off");
+    std::fs::write(
+        &path,
+        "OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n\
+         3 0 4 2\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 2 1 5\n3 3 1 5\n3 0 3 5\n",
+    )
+    .unwrap();
+    let file = path.to_str().unwrap();
+    assert_clean_failure(&loopsurf(&["info", file]), "--orient");
+    for flag in ["--orient", "--repair"] {
+        let out = loopsurf(&["info", flag, file]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let err = text(&out.stderr);
+        assert_eq!(
+            err.trim(),
+            format!(
+                "loopsurf: {file}: orient: flipped 2 of the 8 triangles of the piece of triangle 0 \
+                 (closed: now facing outward)"
+            )
+        );
+        assert!(text(&out.stdout).contains("Euler characteristic: 2"));
+    }
+    assert_clean_failure(&loopsurf(&["info", "--weld", "0.5", file]), "weld distance 0.5");
+}

@@ -33,7 +33,7 @@ pub enum Error {
     #[error("truncated file: {message}")]
     Truncated { message: String },
     /// A face with more than three vertices where only triangles are accepted.
-    #[error("face {face} has {corners} vertices; only triangles are accepted (use --triangulate to fan-split polygons)")]
+    #[error("face {face} has {corners} vertices; only triangles are accepted (--triangulate, LS_LOAD_TRIANGULATE in C, splits polygons)")]
     Polygon { face: usize, corners: usize },
     /// No vertices or no triangles.
     #[error("empty mesh: {nverts} vertices, {ntris} triangles")]
@@ -56,7 +56,7 @@ pub enum Error {
         index: u32,
     },
     /// A triangle whose corners are collinear (to round-off).
-    #[error("triangle {tri} {verts:?} has zero area")]
+    #[error("triangle {tri} {verts:?} has zero area (--allow-degenerate, LS_LOAD_ALLOW_DEGENERATE in C, keeps it)")]
     ZeroArea { tri: usize, verts: [u32; 3] },
     /// A coordinate that is NaN or infinite.
     #[error("vertex {vertex} has a non-finite coordinate {coords:?}")]
@@ -65,7 +65,7 @@ pub enum Error {
     #[error("non-manifold edge ({a}, {b}): shared by triangles {tris:?}")]
     NonManifoldEdge { a: u32, b: u32, tris: Vec<u32> },
     /// A vertex where two or more fans of triangles touch at a single point.
-    #[error("non-manifold vertex {vertex}: its {ntris} triangles form {fans} separate fans")]
+    #[error("non-manifold vertex {vertex}: its {ntris} triangles form {fans} separate fans (--split-nonmanifold, LS_LOAD_SPLIT_NONMANIFOLD in C, splits it)")]
     NonManifoldVertex {
         vertex: u32,
         ntris: usize,
@@ -77,9 +77,13 @@ pub enum Error {
     InteriorValenceTwo { vertex: u32, tris: Vec<u32> },
     /// Two neighbouring triangles traverse their shared edge in the same direction.
     #[error(
-        "inconsistently oriented neighbours: triangles {tris:?} both traverse edge {a} -> {b}"
+        "inconsistently oriented neighbours: triangles {tris:?} both traverse edge {a} -> {b} (--orient, LS_LOAD_ORIENT in C, repairs it)"
     )]
     InconsistentOrientation { a: u32, b: u32, tris: [u32; 2] },
+    /// A connected piece that no choice of triangle orientations makes
+    /// consistent (a Möbius band), found by `--orient`.
+    #[error("the piece of triangle {first_triangle} is not orientable: triangle {tri} closes a twisted loop")]
+    NonOrientable { tri: usize, first_triangle: usize },
     /// An evaluation point that is not a point of its triangle: NaN, or
     /// outside beyond round-off (v < 0, w < 0 or v + w > 1).
     #[error("point (v, w) = ({v}, {w}) of triangle {tri}: {reason}")]
@@ -138,7 +142,8 @@ impl Error {
         match self.root() {
             Error::IndexOutOfRange { tri, .. }
             | Error::RepeatedIndex { tri, .. }
-            | Error::ZeroArea { tri, .. } => Some(Element::Triangle(*tri)),
+            | Error::ZeroArea { tri, .. }
+            | Error::NonOrientable { tri, .. } => Some(Element::Triangle(*tri)),
             Error::NonFiniteCoordinate { vertex, .. } => Some(Element::Vertex(*vertex)),
             // The last triangle named is the one that broke the rule.
             Error::NonManifoldEdge { tris, .. } => {

@@ -6,6 +6,7 @@
 //! crease, more → corner; a tagged vertex is a corner whatever its edges.
 
 use crate::error::{Error, Result};
+use crate::geometry::is_degenerate;
 use crate::topology::Topology;
 use glam::DVec3;
 
@@ -94,7 +95,8 @@ impl Features {
     }
 
     /// Tags every interior edge whose two triangle normals make an angle of
-    /// more than `degrees`. Returns how many edges became hard.
+    /// more than `degrees`, except edges of zero-area triangles, which have
+    /// no normal. Returns how many edges became hard.
     pub(crate) fn tag_by_angle(
         &mut self,
         topo: &Topology,
@@ -107,13 +109,15 @@ impl Features {
             )));
         }
         let threshold = degrees.to_radians();
+        let corners = |t: u32| topo.triangles()[t as usize].map(|i| points[i as usize]);
         let normal = |t: u32| {
-            let [a, b, c] = topo.triangles()[t as usize].map(|i| points[i as usize]);
+            let [a, b, c] = corners(t);
             (b - a).cross(c - a)
         };
         let mut tagged = 0;
         for (e, &[t0, t1]) in topo.edge_triangles().iter().enumerate() {
-            if self.hard_edge[e] {
+            // A zero-area triangle has no normal, so its edges no angle.
+            if self.hard_edge[e] || is_degenerate(corners(t0)) || is_degenerate(corners(t1)) {
                 continue;
             }
             let (n0, n1) = (normal(t0), normal(t1));

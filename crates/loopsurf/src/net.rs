@@ -3,7 +3,9 @@
 
 use crate::error::{Element, Error, Result};
 use crate::features::{classify, Features, VertexKind};
+use crate::geometry::is_degenerate;
 use crate::io::{self, MeshData, ReadOptions};
+use crate::repair::{self, Repair, Repairs};
 use crate::rules;
 use crate::topology::Topology;
 use glam::DVec3;
@@ -19,6 +21,7 @@ pub struct ControlNet {
     topo: std::sync::Arc<Topology>,
     features: Features,
     welded: usize,
+    repairs: Vec<Repair>,
 }
 
 impl ControlNet {
@@ -27,32 +30,47 @@ impl ControlNet {
         Self::read_with(path, &ReadOptions::default())
     }
 
-    /// [`ControlNet::read`] with options (e.g. fan-splitting polygons).
-    /// Validation errors name the file and, for text formats, the line.
+    /// [`ControlNet::read`] with options: splitting polygons, and the
+    /// repairs of [`ReadOptions::repairs`], whose report
+    /// [`ControlNet::repairs`] keeps. Validation errors name the file and,
+    /// for text formats, the line.
     pub fn read_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<ControlNet> {
         let path = path.as_ref();
         let mut data = io::read_mesh(path, opts)?;
-        let points = std::mem::take(&mut data.points);
-        Self::from_indices(points, &data.tris)
-            .map(|net| net.with_welded(data.welded))
-            .map_err(|err| {
-                let line = match err.element() {
-                    Some(Element::Triangle(t)) => data.tri_lines.get(t).copied(),
-                    Some(Element::Vertex(v)) => data.vertex_lines.get(v).copied(),
-                    None => None,
-                };
-                err.in_file(path, line)
-            })
+        Self::build(&mut data, &opts.repairs).map_err(|err| {
+            let line = match err.element() {
+                Some(Element::Triangle(t)) => data.tri_lines.get(t).copied(),
+                Some(Element::Vertex(v)) => data.vertex_lines.get(v).copied(),
+                None => None,
+            };
+            err.in_file(path, line)
+        })
     }
 
     /// Builds a net from a reader's output.
-    pub fn from_mesh_data(data: MeshData) -> Result<ControlNet> {
-        Ok(Self::from_indices(data.points, &data.tris)?.with_welded(data.welded))
+    pub fn from_mesh_data(mut data: MeshData) -> Result<ControlNet> {
+        Self::build(&mut data, &Repairs::default())
     }
 
-    fn with_welded(mut self, welded: usize) -> ControlNet {
-        self.welded = welded;
-        self
+    /// Builds a net from a reader's output after the given repairs.
+    pub fn from_mesh_data_with(mut data: MeshData, repairs: &Repairs) -> Result<ControlNet> {
+        Self::build(&mut data, repairs)
+    }
+
+    /// Repairs and validates `data`, taking its points; on error the line
+    /// tables are left for the caller to locate the problem.
+    fn build(data: &mut MeshData, repairs: &Repairs) -> Result<ControlNet> {
+        let mut report = repair::apply(data, repairs)?;
+        let points = std::mem::take(&mut data.points);
+        let (mut net, degenerate) = Self::validate(points, &data.tris, repairs.allow_degenerate)?;
+        if !degenerate.is_empty() {
+            report.push(Repair::KeptDegenerate {
+                triangles: degenerate,
+            });
+        }
+        net.welded = data.welded;
+        net.repairs = report;
+        Ok(net)
     }
 
     /// Builds a net from coordinates and 0-based triangles.
@@ -64,6 +82,16 @@ impl ControlNet {
     /// Validates everything DESIGN.md requires of a control net, in order:
     /// sizes, indices, coordinates, areas, then manifoldness and orientation.
     pub fn from_indices(points: Vec<DVec3>, tris: &[[i64; 3]]) -> Result<ControlNet> {
+        Ok(Self::validate(points, tris, false)?.0)
+    }
+
+    /// [`ControlNet::from_indices`], optionally accepting zero-area
+    /// triangles: then it also returns them.
+    fn validate(
+        points: Vec<DVec3>,
+        tris: &[[i64; 3]],
+        allow_degenerate: bool,
+    ) -> Result<(ControlNet, Vec<usize>)> {
         let nverts = points.len();
         if nverts == 0 || tris.is_empty() {
             return Err(Error::EmptyMesh {
@@ -108,19 +136,25 @@ impl ControlNet {
                 coords: p.to_array(),
             });
         }
+        let mut degenerate = Vec::new();
         for (t, c) in checked.iter().enumerate() {
             if is_degenerate(c.map(|i| points[i as usize])) {
-                return Err(Error::ZeroArea { tri: t, verts: *c });
+                if !allow_degenerate {
+                    return Err(Error::ZeroArea { tri: t, verts: *c });
+                }
+                degenerate.push(t);
             }
         }
         let topo = Topology::new(nverts, checked)?;
         let features = Features::new(&topo);
-        Ok(ControlNet {
+        let net = ControlNet {
             points,
             topo: std::sync::Arc::new(topo),
             features,
             welded: 0,
-        })
+            repairs: Vec::new(),
+        };
+        Ok((net, degenerate))
     }
 
     /// Assembles a net whose topology is known to be valid (refinement output).
@@ -130,6 +164,7 @@ impl ControlNet {
             topo: std::sync::Arc::new(topo),
             features,
             welded: 0,
+            repairs: Vec::new(),
         }
     }
 
@@ -142,6 +177,7 @@ impl ControlNet {
             topo: self.topo.clone(),
             features: self.features.clone(),
             welded: self.welded,
+            repairs: self.repairs.clone(),
         }
     }
 
@@ -165,6 +201,11 @@ impl ControlNet {
     pub fn welded_vertices(&self) -> usize {
         self.welded
     }
+    /// What the repairs asked for when reading changed, in order (empty
+    /// when none were asked for or none were needed).
+    pub fn repairs(&self) -> &[Repair] {
+        &self.repairs
+    }
 
     /// Tags the edge (a, b) hard; true if it was not hard before.
     pub fn tag_edge(&mut self, a: u32, b: u32) -> Result<bool> {
@@ -175,7 +216,9 @@ impl ControlNet {
         self.features.tag_vertex(v)
     }
     /// Tags every interior edge whose dihedral angle exceeds `degrees`;
-    /// returns how many edges became hard.
+    /// returns how many edges became hard. Edges of zero-area triangles
+    /// (kept by [`Repairs::allow_degenerate`]) have no dihedral angle and
+    /// are never tagged.
     pub fn tag_by_angle(&mut self, degrees: f64) -> Result<usize> {
         self.features
             .tag_by_angle(&self.topo, &self.points, degrees)
@@ -398,15 +441,4 @@ impl NeighbourSums {
             self.hard_count[v],
         )
     }
-}
-
-/// A triangle is degenerate when twice its area is at round-off level
-/// relative to its longest edge squared.
-fn is_degenerate([a, b, c]: [DVec3; 3]) -> bool {
-    let longest = (b - a)
-        .length_squared()
-        .max((c - b).length_squared())
-        .max((a - c).length_squared());
-    let twice_area = (b - a).cross(c - a).length();
-    twice_area <= 1e-14 * longest
 }

@@ -6,7 +6,7 @@ use loopsurf::{ControlNet, DVec3};
 use std::path::PathBuf;
 
 #[path = "support/cgal_data.rs"]
-mod cgal_data;
+pub mod cgal_data;
 
 /// A CGAL demo mesh (see [`cgal_data`]): `None` only when the data is
 /// absent and `LOOPSURF_SKIP_DATA` asks to skip.

@@ -33,7 +33,13 @@ fn read(p: &Path) -> loopsurf::Result<MeshData> {
 }
 
 fn read_tri_opts(p: &Path) -> loopsurf::Result<MeshData> {
-    read_mesh(p, &ReadOptions { triangulate: true })
+    read_mesh(
+        p,
+        &ReadOptions {
+            triangulate: true,
+            ..Default::default()
+        },
+    )
 }
 
 fn pts(m: &MeshData) -> Vec<[f64; 3]> {
@@ -327,7 +333,10 @@ fn ply_ascii() {
     );
     let m = read_tri_opts(&p).unwrap();
     assert_eq!(pts(&m), PLY_POINTS.map(|p| p.map(f64::from)).to_vec());
-    assert_eq!(m.tris, vec![[0, 1, 2], [0, 2, 3], [0, 1, 2], [0, 2, 3]]);
+    // The quad is split along its better diagonal (0-2), its best ear first.
+    assert_eq!(m.tris, vec![[0, 1, 2], [0, 2, 3], [2, 3, 0], [0, 1, 2]]);
+    assert_eq!(m.polygons.len(), 1);
+    assert_eq!(m.polygons[0].first_triangle, 2);
     assert_eq!(m.vertex_lines, vec![12, 13, 14, 15]);
     assert_eq!(m.tri_lines, vec![16, 17, 18, 18]);
 }

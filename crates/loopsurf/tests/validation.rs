@@ -175,7 +175,10 @@ fn polygon_needs_triangulate() {
     ));
     assert!(msg.contains(":7"), "{msg}");
     let path = write("quad_ok.off", &quad);
-    let opts = loopsurf::io::ReadOptions { triangulate: true };
+    let opts = loopsurf::io::ReadOptions {
+        triangulate: true,
+        ..Default::default()
+    };
     let net = ControlNet::read_with(&path, &opts).unwrap();
     assert_eq!(net.triangles(), &[[0, 1, 2], [0, 2, 3]]);
 }

@@ -21,6 +21,7 @@ mod cart3d;
 mod obj;
 mod off;
 mod ply;
+mod polygon;
 mod stl;
 mod text;
 mod vtu;
@@ -29,6 +30,7 @@ pub use cart3d::{read_tri, write_tri, write_tri_with_components};
 pub use obj::{read_obj, write_obj};
 pub use off::{read_off, write_off};
 pub use ply::{read_ply, write_ply};
+pub use polygon::Polygon;
 pub use stl::{read_stl, write_stl};
 pub use vtu::{write_vtu, DataArray};
 
@@ -50,13 +52,31 @@ pub struct MeshData {
     pub welded: usize,
     /// Cart3D only: the component ID of each triangle, when the file has them.
     pub components: Option<Vec<i32>>,
+    /// The polygon faces split into triangles under
+    /// [`ReadOptions::triangulate`], in file order.
+    pub polygons: Vec<Polygon>,
 }
 
 /// Options that change how files are read.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ReadOptions {
-    /// Fan-split polygons into triangles instead of rejecting them.
+    /// Split polygons into triangles (by ear clipping, so non-convex ones
+    /// too) instead of rejecting them. Applied by the parsers.
     pub triangulate: bool,
+    /// Repairs of the triangulation read, applied by
+    /// [`crate::ControlNet::read_with`] before validation; parsers ignore
+    /// them.
+    pub repairs: crate::repair::Repairs,
+}
+
+impl ReadOptions {
+    /// Everything `--repair` turns on: split polygons and every repair.
+    pub fn repair_all() -> ReadOptions {
+        ReadOptions {
+            triangulate: true,
+            repairs: crate::repair::Repairs::all(),
+        }
+    }
 }
 
 /// The file formats loopsurf knows, named by extension.
@@ -102,7 +122,7 @@ pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
 /// fuzzer's input): the format is the one `path`'s extension names, and
 /// `path` names the source in errors; nothing is read from disk.
 pub fn parse_mesh(data: Vec<u8>, path: &Path, opts: &ReadOptions) -> Result<MeshData> {
-    match Format::of(path) {
+    let mut mesh = match Format::of(path) {
         Some(Format::Off) => off::parse_off(&data, opts, path),
         Some(Format::Obj) => obj::parse_obj(&data, opts, path),
         Some(Format::Ply) => ply::parse_ply(&data, opts, path),
@@ -111,13 +131,11 @@ pub fn parse_mesh(data: Vec<u8>, path: &Path, opts: &ReadOptions) -> Result<Mesh
         Some(Format::Vtu) | None => Err(Error::UnknownFormat {
             path: path.to_path_buf(),
         }),
-    }
+    }?;
+    polygon::clip_ears(&mut mesh);
+    Ok(mesh)
 }
 
-/// Writes a triangulation, choosing the format from the extension: `.obj`,
-/// `.off`, `.ply` (ASCII, double), `.stl` (binary, single precision), `.tri`
-/// (ASCII Cart3D) or `.vtu` (VTK XML, no data arrays). Text formats write
-/// every coordinate with enough digits to read back bit-exact.
 /// Fails with [`Error::UnknownFormat`] unless [`write_mesh`] can write `path`'s
 /// extension: lets a command refuse a bad output name before long work.
 pub fn check_writable(path: &Path) -> Result<()> {
@@ -129,6 +147,10 @@ pub fn check_writable(path: &Path) -> Result<()> {
     }
 }
 
+/// Writes a triangulation, choosing the format from the extension: `.obj`,
+/// `.off`, `.ply` (ASCII, double), `.stl` (binary, single precision), `.tri`
+/// (ASCII Cart3D) or `.vtu` (VTK XML, no data arrays). Text formats write
+/// every coordinate with enough digits to read back bit-exact.
 pub fn write_mesh(path: &Path, points: &[DVec3], tris: &[[u32; 3]]) -> Result<()> {
     match Format::of(path) {
         Some(Format::Off) => write_off(path, points, tris),
@@ -153,8 +175,10 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>> {
 }
 
 /// Appends one face of a text or binary file, fan-splitting polygons from
-/// their first corner when asked to. Every triangle of a split polygon
-/// records the polygon's line so validation errors point at the file.
+/// their first corner when asked to (and recording them, for
+/// [`polygon::clip_ears`] to redo once all points are known). Every triangle
+/// of a split polygon records the polygon's line so validation errors point
+/// at the file.
 /// Callers reject faces with fewer than three corners themselves, because
 /// only they know how to name the place.
 fn push_face(
@@ -171,6 +195,12 @@ fn push_face(
             corners: corners.len(),
         }
         .in_file(path, line));
+    }
+    if corners.len() > 3 {
+        mesh.polygons.push(Polygon {
+            first_triangle: mesh.tris.len(),
+            corners: corners.to_vec(),
+        });
     }
     for k in 1..corners.len().saturating_sub(1) {
         mesh.tris.push([corners[0], corners[k], corners[k + 1]]);

@@ -25,7 +25,8 @@ mod pattern;
 mod quality;
 pub(crate) mod swap;
 
-pub use quality::{min_angle, MeshQuality, TriangleQuality};
+pub use crate::geometry::min_angle;
+pub use quality::{MeshQuality, TriangleQuality};
 
 use crate::error::{Error, Result};
 use crate::refine::SurfacePoint;

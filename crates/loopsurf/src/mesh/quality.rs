@@ -2,9 +2,9 @@
 //! per vertex, and the chord error re-measured with snap (the true distance
 //! to the surface, not to the same-parameter point).
 
-use super::swap::max_cosine;
 use super::SurfaceMesh;
 use crate::error::Result;
+use crate::geometry::max_cosine;
 use crate::surface::{Curvature, Surface};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -42,22 +42,6 @@ fn triangle_quality(p: [DVec3; 3]) -> TriangleQuality {
         0.0
     };
     TriangleQuality { min_angle, shape }
-}
-
-/// The smallest angle of any triangle of `tris` over `points`, degrees.
-pub fn min_angle(points: &[DVec3], tris: &[[u32; 3]]) -> f64 {
-    tris.par_iter()
-        .map(|t| {
-            max_cosine(
-                points[t[0] as usize],
-                points[t[1] as usize],
-                points[t[2] as usize],
-            )
-        })
-        .reduce(|| -1.0, f64::max)
-        .clamp(-1.0, 1.0)
-        .acos()
-        .to_degrees()
 }
 
 impl SurfaceMesh {

@@ -8,23 +8,9 @@
 //! Each swap raises the sorted vector of all angles lexicographically, so
 //! the loop terminates; a cap guards against round-off.
 
+pub(crate) use crate::geometry::max_cosine;
 use crate::topology::NONE;
 use glam::{DVec2, DVec3};
-
-/// The largest cosine of a triangle's angles (the cosine of its smallest
-/// angle); degenerate triangles count as 1.
-pub(crate) fn max_cosine(a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    let cos = |p: DVec3, q: DVec3, r: DVec3| {
-        let (u, v) = (q - p, r - p);
-        let d = (u.length_squared() * v.length_squared()).sqrt();
-        if d > 0.0 {
-            u.dot(v) / d
-        } else {
-            1.0
-        }
-    };
-    cos(a, b, c).max(cos(b, c, a)).max(cos(c, a, b))
-}
 
 /// Minimum swaps an angle must gain (as a cosine) to count, against
 /// round-off ping-pong.
