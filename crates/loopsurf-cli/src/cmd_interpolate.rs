@@ -2,7 +2,8 @@
 //! through the mesh's points, written to a file, with a fairness report.
 
 use crate::input::Input;
-use loopsurf::interpolate::{fairness, solve};
+use loopsurf::fairness::fairness;
+use loopsurf::interpolate::solve;
 use loopsurf::{io, Error};
 use std::path::PathBuf;
 use std::time::Instant;

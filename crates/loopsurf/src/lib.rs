@@ -1,17 +1,29 @@
 //! loopsurf: a legacy surface triangulation as the control net of a Loop
 //! subdivision surface, queried like a CAD kernel.
 //!
-//! Layering (one-way, like OpenSubdiv's Sdc → Vtr → Far):
-//! [`rules`] (pure masks) → [`topology`] (connectivity only) →
-//! [`features`] (hard edges and vertex kinds) → [`net`] (positions) →
-//! [`refine`] (uniform subdivision) and evaluation ([`surface`], exact at any
-//! (triangle, v, w)), with [`stream`] to ship a surface as bytes. File formats live in [`io`], built-in shapes in
-//! [`examples`].
+//! Layering (one-way, like OpenSubdiv's Sdc → Vtr → Far; a module imports
+//! only from the ones before it):
+//! 1. [`rules`] (every subdivision, limit and tangent mask) and
+//!    [`geometry`] (plain triangle measures and edge swaps);
+//! 2. [`io`] (file formats, parse only) and [`repair`] (explicit fixes of
+//!    dirty triangulations);
+//! 3. [`topology`] (connectivity only) → [`features`] (hard edges and
+//!    vertex kinds) → [`net`] (positions, validation, the limit operator);
+//! 4. [`refine`] (uniform subdivision) and [`interpolate`] (solving for
+//!    control points whose limit passes through given points);
+//! 5. [`surface`] (exact evaluation at any (triangle, v, w), built on the
+//!    crate-private `eval`), with [`stream`] to ship a surface as bytes;
+//! 6. [`snap`] (closest points; its index is cached by the surface
+//!    through a trait, so the surface does not know it), then [`mesh`],
+//!    [`adapt`] and [`fairness`], which use everything below.
+//!
+//! Built-in shapes live in [`examples`]; errors in [`error`].
 
 pub mod adapt;
 pub mod error;
 pub(crate) mod eval;
 pub mod examples;
+pub mod fairness;
 pub mod features;
 pub mod geometry;
 pub mod interpolate;

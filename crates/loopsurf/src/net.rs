@@ -282,64 +282,25 @@ impl ControlNet {
     }
 }
 
-/// Limit positions of every vertex of a net given by its parts. Linear in
-/// `points`: the evaluator also runs it on basis vectors to read off masks.
+/// Limit positions of every vertex of a net given by its parts: the limit
+/// operator [`limit_mask_entries`] applied to `points`. Linear in `points`:
+/// the evaluator also runs it on basis vectors to read off masks.
 pub(crate) fn limit_positions(
     topo: &Topology,
     features: &Features,
     points: &[DVec3],
 ) -> Vec<DVec3> {
-    let sums = NeighbourSums::new(topo, features, points);
-    let kinds: Vec<VertexKind> = (0..points.len()).map(|v| sums.kind(features, v)).collect();
-    let mut limits: Vec<DVec3> = (0..points.len())
-        .map(|v| {
-            let x = points[v];
-            match kinds[v] {
-                VertexKind::Smooth => rules::smooth_limit(x, sums.all[v], sums.valence[v] as usize),
-                VertexKind::Crease => rules::crease_limit(x, sums.hard[v]),
-                VertexKind::Corner => rules::corner_limit(x),
-                VertexKind::Dart => DVec3::NAN, // below: needs the ordered ring
-            }
-        })
-        .collect();
-    let darts: Vec<u32> = (0..kinds.len() as u32)
-        .filter(|&v| kinds[v as usize] == VertexKind::Dart)
-        .collect();
-    if darts.is_empty() {
-        return limits;
-    }
-    // The one neighbour across each dart's hard edge.
-    let mut across = std::collections::HashMap::with_capacity(darts.len());
-    for (e, &[a, b]) in topo.edges().iter().enumerate() {
-        if features.is_hard_edge(e) {
-            for (v, u) in [(a, b), (b, a)] {
-                if kinds[v as usize] == VertexKind::Dart {
-                    across.insert(v, u);
-                }
-            }
-        }
-    }
-    let mut masks = std::collections::HashMap::new();
-    for (&v, ring) in darts.iter().zip(topo.rings_of(&darts)) {
-        let n = ring.len();
-        let (own, weights) = masks
-            .entry(n)
-            .or_insert_with(|| rules::dart_limit_weights(n));
-        let hard = ring
-            .iter()
-            .position(|u| Some(u) == across.get(&v))
-            .unwrap_or(0);
-        limits[v as usize] = *own * points[v as usize]
-            + (0..n)
-                .map(|j| weights[(j + n - hard) % n] * points[ring[j] as usize])
-                .sum::<DVec3>();
+    let mut limits = vec![DVec3::ZERO; points.len()];
+    for (v, u, w) in limit_mask_entries(topo, features) {
+        limits[v as usize] += w * points[u as usize];
     }
     limits
 }
 
-/// The limit operator S∞ as sparse rows `(vertex, neighbour, weight)`: the
-/// same masks as [`limit_positions`] (a test checks that they agree), for
-/// solving S∞ x′ = x.
+/// The limit operator S∞ as sparse rows `(vertex, neighbour, weight)`, the
+/// one place the limit masks of every vertex kind are assembled (from
+/// [`rules`]): applied by [`limit_positions`], inverted by
+/// [`crate::interpolate::solve`].
 pub(crate) fn limit_mask_entries(topo: &Topology, features: &Features) -> Vec<(u32, u32, f64)> {
     let n = topo.num_vertices();
     let zeros = vec![DVec3::ZERO; n];
@@ -351,14 +312,14 @@ pub(crate) fn limit_mask_entries(topo: &Topology, features: &Features) -> Vec<(u
         let hard = || features.hard_neighbours(topo, v as usize);
         match sums.kind(features, v as usize) {
             VertexKind::Smooth => {
-                let omega = rules::limit_omega(ring.len());
-                let total = omega + ring.len() as f64;
-                entries.push((v, v, omega / total));
-                entries.extend(ring.iter().map(|&u| (v, u, 1.0 / total)));
+                let (own, each) = rules::smooth_limit_weights(ring.len());
+                entries.push((v, v, own));
+                entries.extend(ring.iter().map(|&u| (v, u, each)));
             }
             VertexKind::Crease => {
-                entries.push((v, v, 4.0 / 6.0));
-                entries.extend(hard().into_iter().map(|u| (v, u, 1.0 / 6.0)));
+                let (own, each) = rules::CREASE_LIMIT_WEIGHTS;
+                entries.push((v, v, own));
+                entries.extend(hard().into_iter().map(|u| (v, u, each)));
             }
             VertexKind::Corner => entries.push((v, v, 1.0)),
             VertexKind::Dart => {
@@ -440,5 +401,49 @@ impl NeighbourSums {
             self.valence[v],
             self.hard_count[v],
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::examples;
+    use crate::net::ControlNet;
+    use crate::refine::refine_uniform;
+
+    fn net(name: &str) -> ControlNet {
+        let e = examples::by_name(name).unwrap();
+        ControlNet::from_arrays(e.points, &e.tris).unwrap()
+    }
+
+    /// A limit mask is a left eigenvector of the subdivision matrix for
+    /// eigenvalue 1: one step of subdivision (the rules, applied by
+    /// `refine`, which keeps old vertex i at index i) does not move any
+    /// vertex's limit point. Wrong weights for any vertex kind break this.
+    #[test]
+    fn limit_points_do_not_move_under_subdivision() {
+        let mut darts = net("sphere");
+        let [a, b, _] = darts.triangles()[0];
+        darts.tag_edge(a, b).unwrap(); // one hard edge: both ends are darts
+        let mut cube = net("cube");
+        cube.tag_by_angle(30.0).unwrap();
+        let mut viking = net("viking");
+        viking.tag_by_angle(30.0).unwrap();
+        viking.tag_vertex(3).unwrap();
+        for (name, net) in [
+            ("darts", darts),
+            ("cube", cube),
+            ("viking", viking),
+            ("tetra", net("tetra")),
+            ("open-disk", net("open-disk")),
+        ] {
+            let before = net.limit_points();
+            let after = refine_uniform(&net, 1).unwrap().net().limit_points();
+            for (v, (a, b)) in before.iter().zip(&after).enumerate() {
+                assert!(
+                    (*a - *b).length() <= 1e-14 * net.bbox_diagonal(),
+                    "{name}: vertex {v}: {a} then {b}"
+                );
+            }
+        }
     }
 }

@@ -73,24 +73,18 @@ pub fn limit_omega(valence: usize) -> f64 {
     3.0 / (8.0 * loop_beta(valence))
 }
 
-/// Limit position of a smooth (or dart) vertex: (ω x + Σ xᵢ) / (ω + n).
-#[inline]
-pub fn smooth_limit(x: DVec3, neighbour_sum: DVec3, valence: usize) -> DVec3 {
+/// Limit mask of a smooth vertex, (ω x + Σ xᵢ) / (ω + n), as the weight of
+/// the vertex and of each neighbour.
+pub fn smooth_limit_weights(valence: usize) -> (f64, f64) {
     let omega = limit_omega(valence);
-    (omega * x + neighbour_sum) / (omega + valence as f64)
+    let total = omega + valence as f64;
+    (omega / total, 1.0 / total)
 }
 
-/// Limit position of a crease vertex: the cubic B-spline ⅙ ⅔ ⅙.
-#[inline]
-pub fn crease_limit(x: DVec3, crease_neighbour_sum: DVec3) -> DVec3 {
-    (4.0 * x + crease_neighbour_sum) / 6.0
-}
-
-/// Limit position of a corner: the vertex itself.
-#[inline]
-pub fn corner_limit(x: DVec3) -> DVec3 {
-    x
-}
+/// Limit mask of a crease vertex, the cubic B-spline ⅙ ⅔ ⅙: the weight of
+/// the vertex and of each of its two crease neighbours. A corner's limit is
+/// the vertex itself (weight 1).
+pub const CREASE_LIMIT_WEIGHTS: (f64, f64) = (4.0 / 6.0, 1.0 / 6.0);
 
 /// Limit mask of a dart: a smooth vertex with exactly one hard edge.
 ///
@@ -187,17 +181,17 @@ mod tests {
         let p = DVec3::new(1.5, -2.0, 0.25);
         for n in [3, 4, 5, 6, 7, 12, 64, 300] {
             assert!((smooth_vertex(p, n as f64 * p, n) - p).length() < 1e-13);
-            assert!((smooth_limit(p, n as f64 * p, n) - p).length() < 1e-13);
+            let (own, each) = smooth_limit_weights(n);
+            assert!((own + n as f64 * each - 1.0).abs() < 1e-15);
             let (c, s) = smooth_tangent_weights(n);
             assert!(c.iter().sum::<f64>().abs() < 1e-12);
             assert!(s.iter().sum::<f64>().abs() < 1e-12);
         }
         assert_eq!(crease_vertex(p, 2.0 * p), p);
-        assert_eq!(crease_limit(p, 2.0 * p), p);
+        assert_eq!(CREASE_LIMIT_WEIGHTS.0 + 2.0 * CREASE_LIMIT_WEIGHTS.1, 1.0);
         assert_eq!(smooth_edge(p, p, p, p), p);
         assert_eq!(hard_edge(p, p), p);
         assert_eq!(corner_vertex(p), p);
-        assert_eq!(corner_limit(p), p);
     }
 
     #[test]
@@ -206,15 +200,12 @@ mod tests {
         let s = DVec3::new(6.0, 12.0, 18.0);
         // Regular: 10/16·0 + 1/16·s.
         assert_eq!(smooth_vertex(x, s, 6), s / 16.0);
-        // Regular limit: (6·0 + s) / 12.
-        assert!((smooth_limit(x, s, 6) - s / 12.0).length() < 1e-14);
+        // Regular limit: (6·x + Σ xᵢ) / 12.
+        let (own, each) = smooth_limit_weights(6);
+        assert!((own - 0.5).abs() < 1e-15 && (each - 1.0 / 12.0).abs() < 1e-16);
         assert_eq!(
             crease_vertex(DVec3::X * 8.0, DVec3::Y * 8.0),
             DVec3::new(6.0, 1.0, 0.0)
-        );
-        assert_eq!(
-            crease_limit(DVec3::X * 6.0, DVec3::Y * 6.0),
-            DVec3::new(4.0, 1.0, 0.0)
         );
         assert_eq!(
             smooth_edge(
@@ -238,7 +229,9 @@ mod tests {
             DVec3::new(2.5, 0.0, 1.0),
         );
         let (a1, x1, b1) = (hard_edge(a, x), crease_vertex(x, a + b), hard_edge(x, b));
-        assert!((crease_limit(x, a + b) - crease_limit(x1, a1 + b1)).length() < 1e-15);
+        let (own, each) = CREASE_LIMIT_WEIGHTS;
+        let limit = |x: DVec3, sum: DVec3| own * x + each * sum;
+        assert!((limit(x, a + b) - limit(x1, a1 + b1)).length() < 1e-15);
     }
 
     #[test]

@@ -8,7 +8,6 @@
 use crate::error::{Error, Result};
 use crate::eval::surface::{AtVertex, ChartEvaluator, Evaluator};
 use crate::net::ControlNet;
-use crate::snap::SnapIndex;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -23,8 +22,17 @@ pub struct Surface {
     mode: SurfaceMode,
     /// Displacement mode only: original point minus limit point, per vertex.
     displacement: Vec<DVec3>,
-    /// Built on the first snap, so evaluation-only users never pay for it.
-    snap_index: std::sync::OnceLock<SnapIndex>,
+    /// What a layer above builds from the surface on first use (the snap
+    /// index, on the first snap, so evaluation-only users never pay for it).
+    derived: std::sync::OnceLock<Box<dyn Derived>>,
+}
+
+/// Data that a layer above the surface derives from it once and caches
+/// with it (the snap index): the surface holds it without knowing how it
+/// is built or what it is.
+pub(crate) trait Derived: std::any::Any + Send + Sync {
+    /// Bytes it holds, counted in [`Surface::memory_bytes`].
+    fn memory_bytes(&self) -> usize;
 }
 
 /// Which surface a control net defines (seed 000 §3.3).
@@ -141,13 +149,17 @@ impl Surface {
             net,
             mode,
             displacement,
-            snap_index: std::sync::OnceLock::new(),
+            derived: std::sync::OnceLock::new(),
         })
     }
 
-    /// The snapping index, built on first use.
-    pub(crate) fn snap_index(&self) -> &SnapIndex {
-        self.snap_index.get_or_init(|| SnapIndex::new(self))
+    /// The surface's derived data of type `T`, built by `build` on first
+    /// use. One type only per surface (the snap index): asking for another
+    /// is a bug in loopsurf, caught here.
+    pub(crate) fn derived<T: Derived>(&self, build: impl FnOnce(&Surface) -> T) -> &T {
+        let data: &dyn std::any::Any = self.derived.get_or_init(|| Box::new(build(self))).as_ref();
+        data.downcast_ref::<T>()
+            .expect("a surface caches one kind of derived data")
     }
 
     /// The evaluator behind this surface (the approximating surface of its
@@ -182,7 +194,7 @@ impl Surface {
     /// the shared special-vertex configurations, and the snapping index
     /// once a snap has built it).
     pub fn memory_bytes(&self) -> usize {
-        self.evaluator.memory_bytes() + self.snap_index.get().map_or(0, SnapIndex::memory_bytes)
+        self.evaluator.memory_bytes() + self.derived.get().map_or(0, |d| d.memory_bytes())
     }
 
     /// Number of distinct special-vertex configurations precomputed.

@@ -5,7 +5,8 @@
 mod common;
 
 use common::cgal_mesh;
-use loopsurf::interpolate::{fairness, solve, DISPLACEMENT_WARNING};
+use loopsurf::fairness::{fairness, DISPLACEMENT_WARNING};
+use loopsurf::interpolate::solve;
 use loopsurf::{ControlNet, DVec3, Surface, SurfaceMode};
 
 /// CGAL meshes with boundaries (pig), hard edges (fandisk at 30°) and

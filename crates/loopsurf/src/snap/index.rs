@@ -175,12 +175,6 @@ impl SnapIndex {
     }
 
     /// Bytes held.
-    pub(crate) fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        self.nodes.capacity() * size_of::<BoxNode>()
-            + self.cells.capacity() * size_of::<CellBound>()
-            + self.level_start.capacity() * size_of::<usize>()
-    }
 
     /// The container of cell `c` of level `k`.
     pub(crate) fn cell(&self, k: u32, c: usize) -> &CellBound {
@@ -325,5 +319,15 @@ impl<'a> Support<'a> {
         for piece in pieces {
             self.gather(piece, out);
         }
+    }
+}
+
+/// The surface caches its index without knowing what it is.
+impl crate::surface::Derived for SnapIndex {
+    fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.nodes.capacity() * size_of::<BoxNode>()
+            + self.cells.capacity() * size_of::<CellBound>()
+            + self.level_start.capacity() * size_of::<usize>()
     }
 }

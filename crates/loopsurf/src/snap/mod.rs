@@ -110,7 +110,7 @@ impl Surface {
 
     /// Best-first branch and bound from an optional first candidate.
     fn search(&self, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Snap {
-        let index = self.snap_index();
+        let index = self.derived(SnapIndex::new);
         let mut search = Search {
             surface: self,
             p,
