@@ -6,15 +6,17 @@
 
 use libfuzzer_sys::fuzz_target;
 use loopsurf::io::{parse_mesh, ReadOptions};
+use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, Surface};
 
 fuzz_target!(|data: &[u8]| {
-    for triangulate in [false, true] {
+    // Plain, split polygons, and every repair (which parse untrusted data too).
+    for (triangulate, repairs) in [(false, Repairs::default()), (true, Repairs::default()), (true, Repairs::all())] {
         let opts = ReadOptions { triangulate, ..Default::default() };
         let Ok(mesh) = parse_mesh(data.to_vec(), std::path::Path::new("input.tri"), &opts) else {
             continue;
         };
-        if let Ok(net) = ControlNet::from_mesh_data(mesh) {
+        if let Ok(net) = ControlNet::from_mesh_data_with(mesh, &repairs) {
             if net.triangles().len() <= 64 {
                 let _ = Surface::new(&net);
             }

@@ -2,7 +2,9 @@
 
 use crate::ls_net;
 use crate::status::{input, input_mut, output, run, run_void, Fail};
-use crate::status::{LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE};
+use crate::status::{
+    LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE, LS_ERR_NULL_POINTER,
+};
 use loopsurf::io::ReadOptions;
 use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, DVec3};
@@ -144,9 +146,13 @@ pub unsafe extern "C" fn ls_net_from_arrays(
     })
 }
 
-/// Borrows `3 × n` values; NULL and sizes beyond memory are errors.
+/// Borrows `3 × n` values; NULL and sizes beyond memory are errors. No
+/// reference is made from `p` before the size is known good (with n = 0 a
+/// caller may pass a pointer past the end of its data).
 unsafe fn array<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T], Fail> {
-    input(p, what)?;
+    if p.is_null() {
+        return Err(Fail::new(LS_ERR_NULL_POINTER, format!("{what} is NULL")));
+    }
     let len = n
         .checked_mul(3)
         .filter(|len| len.saturating_mul(std::mem::size_of::<T>()) <= isize::MAX as usize)

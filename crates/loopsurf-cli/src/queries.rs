@@ -3,6 +3,8 @@
 //! stops the run with an error naming its line number.
 
 use loopsurf::Error;
+use loopsurf_cli::parse_query;
+pub use loopsurf_cli::write_numbers;
 use rayon::prelude::*;
 use std::io::{BufRead, Write};
 
@@ -25,7 +27,7 @@ pub fn run<const N: usize, R: Send>(
             chunk.clear();
             for (i, line) in lines.by_ref() {
                 let line = line?;
-                if let Some(q) = parse::<N>(i + 1, &line, expected).map_err(invalid_data)? {
+                if let Some(q) = parse_query::<N>(i + 1, &line, expected).map_err(invalid_data)? {
                     chunk.push((i + 1, q));
                     if chunk.len() == CHUNK {
                         break;
@@ -62,35 +64,4 @@ pub fn run<const N: usize, R: Send>(
 
 fn invalid_data(e: Error) -> std::io::Error {
     std::io::Error::new(std::io::ErrorKind::InvalidData, e)
-}
-
-/// One line of N numbers, or None for a blank or comment line.
-fn parse<const N: usize>(
-    line: usize,
-    text: &str,
-    expected: &str,
-) -> Result<Option<[f64; N]>, Error> {
-    let content = text.split('#').next().unwrap_or("").trim();
-    if content.is_empty() {
-        return Ok(None);
-    }
-    let bad = || Error::Malformed {
-        line,
-        message: format!("expected `{expected}`, got '{content}'"),
-    };
-    let fields: Vec<&str> = content.split_whitespace().collect();
-    if fields.len() != N {
-        return Err(bad());
-    }
-    let mut out = [0.0; N];
-    for (x, f) in out.iter_mut().zip(fields) {
-        *x = f.parse::<f64>().map_err(|_| bad())?;
-    }
-    Ok(Some(out))
-}
-
-/// Writes numbers separated by spaces, each formatted to read back bit-exact.
-pub fn write_numbers(out: &mut dyn Write, numbers: &[f64]) -> std::io::Result<()> {
-    let text: Vec<String> = numbers.iter().map(|x| format!("{x:e}")).collect();
-    writeln!(out, "{}", text.join(" "))
 }

@@ -1,9 +1,13 @@
 //! The fuzzers' findings and minimised corpora, replayed on stable: every
 //! file under `fuzz/corpus/<target>/` and `fuzz/regressions/<target>/` goes
 //! through what its fuzz target does (fuzz/fuzz_targets/), and must end in
-//! a result or a clear error — no panic, in bounded memory and time.
+//! a result or a clear error — no panic, in bounded memory and time. The
+//! targets outside this crate are replayed where they can be reached:
+//! `queries` by crates/loopsurf-cli/src/lib.rs, `arrays` by
+//! crates/loopsurf-capi/tests/hostile_arrays.rs.
 
 use loopsurf::io::{parse_mesh, ReadOptions};
+use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, Surface};
 use std::path::{Path, PathBuf};
 
@@ -22,13 +26,21 @@ fn inputs(target: &str) -> Vec<PathBuf> {
 
 /// What fuzz/fuzz_targets/<format>.rs does with one input.
 fn mesh_pipeline(format: &str, data: &[u8]) {
-    for triangulate in [false, true] {
-        let opts = ReadOptions { triangulate };
+    // Plain, split polygons, and every repair (which parse untrusted data too).
+    for (triangulate, repairs) in [
+        (false, Repairs::default()),
+        (true, Repairs::default()),
+        (true, Repairs::all()),
+    ] {
+        let opts = ReadOptions {
+            triangulate,
+            ..Default::default()
+        };
         let name = format!("input.{format}");
         let Ok(mesh) = parse_mesh(data.to_vec(), Path::new(&name), &opts) else {
             continue;
         };
-        if let Ok(net) = ControlNet::from_mesh_data(mesh) {
+        if let Ok(net) = ControlNet::from_mesh_data_with(mesh, &repairs) {
             if net.triangles().len() <= 64 {
                 let _ = Surface::new(&net);
             }
