@@ -51,6 +51,11 @@ pub unsafe extern "C" fn ls_adapt(
             ));
         }
         let mut adapter = surface.net().adapt().levels(levels_arg(levels)?);
+        if surface.mode() == loopsurf::SurfaceMode::Approximating {
+            // The net's own limit surface: the conical angle at hard edges
+            // measures against it instead of building one.
+            adapter = adapter.limit_surface(surface);
+        }
         if angle >= 0.0 {
             adapter = adapter.angle(angle);
         }

@@ -66,7 +66,13 @@ fn run_once(
     tolerance: Option<f64>,
     args: &Args,
 ) -> Result<Run, Error> {
-    let mut adapter = net.adapt().levels(args.levels).realign(!args.no_realign);
+    // The surface is this net's limit surface: the conical angle at hard
+    // edges measures against it instead of building its own.
+    let mut adapter = net
+        .adapt()
+        .levels(args.levels)
+        .realign(!args.no_realign)
+        .limit_surface(surface);
     if let Some(a) = angle {
         adapter = adapter.angle(a);
     }

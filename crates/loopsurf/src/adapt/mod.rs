@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::features::Features;
 use crate::net::ControlNet;
 use crate::refine::SurfacePoint;
-use crate::surface::Surface;
+use crate::surface::{Surface, SurfaceMode};
 use crate::topology::Topology;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -34,6 +34,7 @@ pub struct Adapter<'a> {
     levels: u32,
     angle: Option<f64>,
     tolerance: Option<(&'a Surface, f64)>,
+    limit: Option<&'a Surface>,
     realign: bool,
     max_triangles: usize,
 }
@@ -116,6 +117,7 @@ impl<'a> Adapter<'a> {
             levels: 0,
             angle: None,
             tolerance: None,
+            limit: None,
             realign: true,
             max_triangles: 200_000_000,
         }
@@ -128,7 +130,11 @@ impl<'a> Adapter<'a> {
     }
 
     /// The conical-angle threshold, degrees in [0, 180): a vertex whose
-    /// normals spread less is flat. 0 is uniform subdivision.
+    /// normals spread less is flat. 0 is uniform subdivision. At a vertex
+    /// on a hard edge the normals are compared within each smooth sector,
+    /// and the limit surface's bending across each triangle of the fan
+    /// counts too, so that one-triangle sectors are measured (see
+    /// `classify`; nets without hard edges follow the seed exactly).
     pub fn angle(mut self, degrees: f64) -> Self {
         self.angle = Some(degrees);
         self
@@ -139,6 +145,18 @@ impl<'a> Adapter<'a> {
     /// (the limit surface of this net) at their parameters.
     pub fn tolerance(mut self, surface: &'a Surface, relative: f64) -> Self {
         self.tolerance = Some((surface, relative));
+        self
+    }
+
+    /// The limit surface of this net (`Surface::new` of it), which the
+    /// conical angle at hard edges compares the levels with (see
+    /// `classify`). Without it, [`Adapter::run`] uses the tolerance's
+    /// surface when that is this one, or builds its own when the net has
+    /// hard edges (boundaries included) and an angle is set: on nets with
+    /// thousands of hard edges that build costs more than the subdivision,
+    /// so callers that hold the surface anyway should pass it.
+    pub fn limit_surface(mut self, surface: &'a Surface) -> Self {
+        self.limit = Some(surface);
         self
     }
 
@@ -178,6 +196,11 @@ impl<'a> Adapter<'a> {
             (_, Some((surface, _))) if surface.net().triangles() != self.net.triangles() => {
                 return bad("the tolerance's surface is not this net's".into())
             }
+            _ if self.limit.is_some_and(|s| !is_limit_of(s, self.net)) => {
+                return bad(
+                    "the limit surface is not this net's (Surface::new of the same net)".into(),
+                )
+            }
             _ => {}
         }
         Ok(())
@@ -188,6 +211,21 @@ impl<'a> Adapter<'a> {
         self.check()?;
         let net = self.net;
         let tolerance = self.tolerance.map(|(s, t)| (s, t * net.bbox_diagonal()));
+        // The conical angle at hard edges compares with the limit surface
+        // of this net (Loop's, as the levels approach it): the one given,
+        // or the tolerance's when it is that one, else one built here, only
+        // when needed.
+        let own;
+        let limit = match (self.angle, self.tolerance) {
+            (None, _) => None,
+            _ if net.features().num_hard_edges() == 0 => None,
+            _ if self.limit.is_some() => self.limit,
+            (_, Some((s, _))) if is_limit_of(s, net) => Some(s),
+            _ => {
+                own = Surface::new(net)?;
+                Some(&own)
+            }
+        };
         let mut level = Level {
             net: net.clone(),
             charts: (0..net.triangles().len() as u32)
@@ -209,7 +247,7 @@ impl<'a> Adapter<'a> {
                 )));
             }
             let mut flat: Vec<bool> = match self.angle {
-                Some(a) => classify::conical_angles(&level.net, &level.dead)
+                Some(a) => classify::conical_angles(&level.net, &level.charts, &level.dead, limit)?
                     .into_iter()
                     .map(|ca| ca < a)
                     .collect(),
@@ -261,6 +299,23 @@ impl<'a> Adapter<'a> {
             counts,
         })
     }
+}
+
+/// Whether `surface` is the Loop limit surface of `net`: approximating,
+/// same points, same hard edges and corners (the tolerance asks only for
+/// the same triangles).
+fn is_limit_of(surface: &Surface, net: &ControlNet) -> bool {
+    let other = surface.net();
+    let tagged = |n: &ControlNet| -> Vec<bool> {
+        (0..n.points().len())
+            .map(|v| n.features().is_tagged_vertex(v))
+            .collect()
+    };
+    surface.mode() == SurfaceMode::Approximating
+        && other.points() == net.points()
+        && other.triangles() == net.triangles()
+        && other.hard_edges() == net.hard_edges()
+        && tagged(other) == tagged(net)
 }
 
 fn count(level: &Level) -> LevelCount {

@@ -323,8 +323,10 @@ impl Search<'_> {
         let p = self.p;
         let [a, b, c] = q.corners();
         let centre = DVec2::splat(1.0 / 3.0);
+        // A piece whose flat triangle is degenerate starts at its centre.
         let start = start.unwrap_or_else(|| {
-            piece.global(0.95 * cell::closest_in_triangle(p, a, b, c) + 0.05 * centre)
+            let near = cell::closest_in_triangle(p, a, b, c);
+            piece.global(if near.is_finite() { 0.95 * near + 0.05 * centre } else { centre })
         });
         let region = local::Region::new(piece.corners);
         let (own, _) = local::descend_within(self.surface, p, piece.tri, start, &region);
