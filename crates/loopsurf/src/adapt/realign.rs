@@ -8,14 +8,14 @@
 //! realignment is only about shape: an edge inside one control triangle
 //! whose two triangles both have a dead corner is swapped while that
 //! raises the smaller minimum angle of the two (the mesher's Lawson swaps,
-//! [`crate::mesh::swap`]). Triangles with live corners only keep the
+//! [`crate::geometry::swap`]). Triangles with live corners only keep the
 //! regular Loop connectivity that uniform subdivision has, so `--angle 0`
 //! stays exactly uniform. Swaps
 //! inside one chart keep each triangle's (v, w) map valid and hard edges
 //! (which lie on control edges) untouched.
 
 use super::Parts;
-use crate::mesh::swap::swap_edges;
+use crate::geometry::swap::swap_edges;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 

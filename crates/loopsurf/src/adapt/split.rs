@@ -18,7 +18,7 @@
 //! two dead edges, which make all three corners dead.
 
 use super::{FaceChart, Level, Parts};
-use crate::mesh::swap::max_cosine;
+use crate::geometry::max_cosine;
 use crate::refine::subdivide_points;
 use crate::topology::NONE;
 use glam::DVec2;

@@ -5,6 +5,8 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+pub(crate) mod swap;
+
 /// A triangle is degenerate when twice its area is at round-off level
 /// relative to its longest edge squared: its normal is then undefined (so
 /// are the dihedral angles of its edges), though Loop subdivision itself

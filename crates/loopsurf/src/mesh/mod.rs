@@ -23,7 +23,6 @@
 mod density;
 mod pattern;
 mod quality;
-pub(crate) mod swap;
 
 pub use crate::geometry::min_angle;
 pub use quality::{MeshQuality, TriangleQuality};
@@ -440,7 +439,7 @@ impl<'a> Mesher<'a> {
         if self.swaps && swap_from < tris.len() {
             let mut failure = None;
             let strips = &mut tris[swap_from..];
-            swap::swap_edges(strips, &params, &points, |a, b| match tolerance {
+            crate::geometry::swap::swap_edges(strips, &params, &points, |a, b| match tolerance {
                 None => true,
                 Some(tol) => match (
                     chord(&a, &points, tol),

@@ -8,8 +8,10 @@
 //! Each swap raises the sorted vector of all angles lexicographically, so
 //! the loop terminates; a cap guards against round-off.
 
-pub(crate) use crate::geometry::max_cosine;
-use crate::topology::NONE;
+use super::max_cosine;
+
+/// No twin (a side on the strip's border).
+const NONE: u32 = u32::MAX;
 use glam::{DVec2, DVec3};
 
 /// Minimum swaps an angle must gain (as a cosine) to count, against
