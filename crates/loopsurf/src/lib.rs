@@ -20,6 +20,7 @@
 //! Built-in shapes live in [`examples`]; errors in [`error`].
 
 pub mod adapt;
+pub mod curve;
 pub mod error;
 pub(crate) mod eval;
 pub mod examples;
@@ -29,6 +30,7 @@ pub mod geometry;
 pub mod interpolate;
 pub mod io;
 pub mod mesh;
+pub mod model;
 pub mod net;
 pub mod refine;
 pub mod repair;

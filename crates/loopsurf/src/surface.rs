@@ -25,6 +25,8 @@ pub struct Surface {
     /// What a layer above builds from the surface on first use (the snap
     /// index, on the first snap, so evaluation-only users never pay for it).
     derived: std::sync::OnceLock<Box<dyn Derived>>,
+    /// Corners, curves and faces, traced on first use.
+    model: std::sync::OnceLock<crate::model::Model>,
 }
 
 /// Data that a layer above the surface derives from it once and caches
@@ -150,6 +152,7 @@ impl Surface {
             mode,
             displacement,
             derived: std::sync::OnceLock::new(),
+            model: std::sync::OnceLock::new(),
         })
     }
 
@@ -178,6 +181,18 @@ impl Surface {
                 .copied()
                 .unwrap_or(DVec3::ZERO)
         })
+    }
+
+    /// The corners, curves and faces of the net's hard features (see
+    /// [`crate::model`]), traced on first use.
+    pub fn model(&self) -> &crate::model::Model {
+        self.model
+            .get_or_init(|| crate::model::Model::new(self.net.topology(), self.net.features()))
+    }
+
+    /// The displacement of vertex `v` (zero unless in displacement mode).
+    pub(crate) fn displacement_of(&self, v: u32) -> DVec3 {
+        self.displacement.get(v as usize).copied().unwrap_or(DVec3::ZERO)
     }
 
     /// Which surface this is.
@@ -266,7 +281,7 @@ impl Surface {
     }
 
     /// The approximating surface at a checked (v, w).
-    fn eval_approximating(&self, tri: usize, v: f64, w: f64) -> Evaluation {
+    pub(crate) fn eval_approximating(&self, tri: usize, v: f64, w: f64) -> Evaluation {
         evaluation_of(self.evaluator.eval(tri, v, w))
     }
 

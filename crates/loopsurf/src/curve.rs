@@ -1,0 +1,665 @@
+//! Exact evaluation of the model's curves (the limit crease and boundary
+//! curves), their arc length, and projection onto them.
+//!
+//! A curve's parameter t runs over its chain, one unit per control edge
+//! (DESIGN.md). The crease rules (edge ½ ½, vertex ⅛ ¾ ⅛) are those of the
+//! uniform cubic B-spline, and a corner is fixed, so the limit curve is, on
+//! each unit segment, the cubic B-spline segment of four chain points — at a
+//! corner end with the phantom point 2P₀ − P₁, which makes the fixed-end
+//! rule a B-spline rule; around a closed loop, periodically. Only next to a
+//! dart tip (the crease ends inside a face) is it not: the tip moves by the
+//! smooth rule, so the two segments whose B-spline support holds the tip
+//! are evaluated on the surface instead, along the control edge, which is
+//! exact too. At integer t the curve is the chain vertex's limit
+//! (P₋ + 4P + P₊)/6, with tangent (P₊ − P₋)/2 and second derivative
+//! P₋ − 2P + P₊: these depend on the three points alone (after one step the
+//! vertex's curve neighbours are edge midpoints), darts or not. At a dart
+//! tip itself the parameterisation is singular, as at any special vertex of
+//! the surface: the position is exact and the derivatives are reported as
+//! zero with `at_special_vertex` set.
+//!
+//! In displacement mode the surface adds, per triangle, the linear
+//! interpolation of its corners' displacements; along an edge that is the
+//! same from both sides, so the curve adds it too.
+
+use crate::error::{Error, Result};
+use crate::features::VertexKind;
+use crate::model::Curve;
+use crate::surface::Surface;
+use crate::topology::NONE;
+use glam::{DVec2, DVec3};
+
+/// Position and first and second derivatives with respect to t.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveEvaluation {
+    pub x: DVec3,
+    pub dx: DVec3,
+    pub ddx: DVec3,
+    /// t is a dart tip: the position is exact, the derivatives are zero
+    /// (the parameterisation is singular there).
+    pub at_special_vertex: bool,
+}
+
+impl CurveEvaluation {
+    /// X X′ X″ as 9 numbers (the `eval --edge` and `ls_curve_evaluate`
+    /// record).
+    pub fn record(&self) -> [f64; 9] {
+        let mut out = [0.0; 9];
+        out[0..3].copy_from_slice(&self.x.to_array());
+        out[3..6].copy_from_slice(&self.dx.to_array());
+        out[6..9].copy_from_slice(&self.ddx.to_array());
+        out
+    }
+}
+
+/// Uniform cubic B-spline basis on [0, 1] and its first two derivatives.
+fn bspline_basis(s: f64) -> [[f64; 4]; 3] {
+    let r = 1.0 - s;
+    [
+        [
+            r * r * r / 6.0,
+            (3.0 * s * s * s - 6.0 * s * s + 4.0) / 6.0,
+            (-3.0 * s * s * s + 3.0 * s * s + 3.0 * s + 1.0) / 6.0,
+            s * s * s / 6.0,
+        ],
+        [
+            -r * r / 2.0,
+            (3.0 * s * s - 4.0 * s) / 2.0,
+            (-3.0 * s * s + 2.0 * s + 1.0) / 2.0,
+            s * s / 2.0,
+        ],
+        [r, 3.0 * s - 2.0, 1.0 - 3.0 * s, s],
+    ]
+}
+
+impl Surface {
+    /// The curve `curve` of [`Surface::model`], checked.
+    pub(crate) fn curve(&self, curve: usize) -> Result<&Curve> {
+        let n = self.model().curves().len();
+        self.model().curves().get(curve).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "curve {curve}: out of range (the model has {n} curves)"
+            ))
+        })
+    }
+
+    /// t checked against [0, n] (round-off beyond is clamped).
+    fn curve_parameter(&self, curve: &Curve, t: f64) -> Result<f64> {
+        let n = curve.len() as f64;
+        let slack = crate::surface::PARAMETER_TOLERANCE * n.max(1.0);
+        if !t.is_finite() || t < -slack || t > n + slack {
+            return Err(Error::InvalidArgument(format!(
+                "curve parameter t = {t}: outside [0, {n}]"
+            )));
+        }
+        Ok(t.clamp(0.0, n))
+    }
+
+    /// Chain point j of a curve, extended past open ends by the phantom
+    /// points 2P₀ − P₁ and 2Pₙ − Pₙ₋₁, and periodically around a loop.
+    fn chain_point(&self, curve: &Curve, j: isize) -> DVec3 {
+        let p = |i: usize| self.net().points()[curve.chain[i] as usize];
+        let n = curve.len() as isize;
+        if curve.is_closed() {
+            return p(j.rem_euclid(n) as usize);
+        }
+        if j < 0 {
+            2.0 * p(0) - p(1)
+        } else if j > n {
+            2.0 * p(n as usize) - p(n as usize - 1)
+        } else {
+            p(j as usize)
+        }
+    }
+
+    /// Whether chain vertex `j` of an open curve is a dart tip.
+    fn is_dart_tip(&self, curve: &Curve, j: usize) -> bool {
+        !curve.is_closed()
+            && (j == 0 || j == curve.len())
+            && self
+                .net()
+                .features()
+                .vertex_kind(self.net().topology(), curve.chain[j] as usize)
+                == VertexKind::Dart
+    }
+
+    /// X(t), X′(t), X″(t) of curve `curve` of the model (see the module
+    /// doc). t ∈ [0, n] for n control edges.
+    pub fn curve_eval(&self, curve: usize, t: f64) -> Result<CurveEvaluation> {
+        let c = self.curve(curve)?;
+        let t = self.curve_parameter(c, t)?;
+        let n = c.len();
+        let k = (t.floor() as usize).min(n - 1);
+        let s = t - k as f64;
+        let j = if s == 0.0 {
+            Some(k)
+        } else if s == 1.0 {
+            Some(k + 1)
+        } else {
+            None
+        };
+        let mut e = match j {
+            Some(j) if self.is_dart_tip(c, j) => {
+                let x = self.limit_of_vertex(c.chain[j]);
+                return Ok(CurveEvaluation {
+                    x,
+                    dx: DVec3::ZERO,
+                    ddx: DVec3::ZERO,
+                    at_special_vertex: true,
+                });
+            }
+            Some(j) => {
+                let (a, p, b) = (
+                    self.chain_point(c, j as isize - 1),
+                    self.chain_point(c, j as isize),
+                    self.chain_point(c, j as isize + 1),
+                );
+                CurveEvaluation {
+                    x: (a + 4.0 * p + b) / 6.0,
+                    dx: (b - a) / 2.0,
+                    ddx: a - 2.0 * p + b,
+                    at_special_vertex: false,
+                }
+            }
+            None if self.near_dart(c, k) => self.curve_on_surface(c, k, s)?,
+            None => {
+                let basis = bspline_basis(s);
+                let pts = [-1isize, 0, 1, 2].map(|d| self.chain_point(c, k as isize + d));
+                let comb = |w: &[f64; 4]| (0..4).map(|i| w[i] * pts[i]).sum::<DVec3>();
+                CurveEvaluation {
+                    x: comb(&basis[0]),
+                    dx: comb(&basis[1]),
+                    ddx: comb(&basis[2]),
+                    at_special_vertex: false,
+                }
+            }
+        };
+        if self.mode() == crate::surface::SurfaceMode::Displacement {
+            let (da, db) = (
+                self.displacement_of(c.chain[k]),
+                self.displacement_of(c.chain[k + 1]),
+            );
+            e.x += (1.0 - s) * da + s * db;
+            e.dx += db - da;
+        }
+        Ok(e)
+    }
+
+    /// Whether segment k's B-spline support holds a dart tip.
+    fn near_dart(&self, c: &Curve, k: usize) -> bool {
+        let n = c.len();
+        (k <= 1 && self.is_dart_tip(c, 0)) || (k + 2 >= n && self.is_dart_tip(c, n))
+    }
+
+    /// The approximating surface's limit position of control vertex v.
+    fn limit_of_vertex(&self, v: u32) -> DVec3 {
+        let topo = self.net().topology();
+        let t = topo.fan(v as usize)[0];
+        let corner = crate::topology::corner_of(topo.triangles()[t as usize], v);
+        let (cv, cw) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][corner as usize];
+        // The surface at a triangle corner is the vertex's exact limit.
+        self.eval(t as usize, cv, cw)
+            .map(|e| e.x)
+            .unwrap_or(DVec3::NAN)
+    }
+
+    /// Segment k at s ∈ (0, 1) from the surface on the curve's left (or
+    /// only) triangle along control edge k: the directional derivatives
+    /// along the edge's direction in (v, w). Without displacement (added
+    /// by the caller).
+    fn curve_on_surface(&self, c: &Curve, k: usize, s: f64) -> Result<CurveEvaluation> {
+        let (tri, a, b) = self.edge_in_triangle(c, k);
+        let uv = |corner: usize| [DVec2::ZERO, DVec2::X, DVec2::Y][corner];
+        let (pa, pb) = (uv(a), uv(b));
+        let q = pa + s * (pb - pa);
+        let d = pb - pa;
+        let e = self.eval_approximating(tri, q.x, q.y);
+        Ok(CurveEvaluation {
+            x: e.x,
+            dx: d.x * e.xv + d.y * e.xw,
+            ddx: d.x * d.x * e.xvv + 2.0 * d.x * d.y * e.xvw + d.y * d.y * e.xww,
+            at_special_vertex: false,
+        })
+    }
+
+    /// A triangle holding control edge k of the curve and the corners of
+    /// chain[k] and chain[k + 1] in it.
+    pub(crate) fn edge_in_triangle(&self, c: &Curve, k: usize) -> (usize, usize, usize) {
+        let topo = self.net().topology();
+        let [t0, t1] = topo.edge_triangles()[c.edges[k] as usize];
+        let tri = if t0 != NONE { t0 } else { t1 };
+        let corners = topo.triangles()[tri as usize];
+        let at = |v: u32| corners.iter().position(|&x| x == v).unwrap_or(0);
+        (tri as usize, at(c.chain[k]), at(c.chain[k + 1]))
+    }
+}
+
+/// A point of a curve nearest to a query point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveSnap {
+    /// Its curve parameter.
+    pub t: f64,
+    /// X(t).
+    pub point: DVec3,
+    /// |X(t) − p|.
+    pub distance: f64,
+    /// A proven lower bound on the distance from p to the whole curve (0
+    /// for a local projection, which proves nothing).
+    pub lower_bound: f64,
+}
+
+/// 10-point Gauss–Legendre nodes and weights on [−1, 1] (positive half).
+const GAUSS: [(f64, f64); 5] = [
+    (0.148_874_338_981_631_22, 0.295_524_224_714_752_87),
+    (0.433_395_394_129_247_2, 0.269_266_719_309_996_35),
+    (0.679_409_568_299_024_4, 0.219_086_362_515_982_04),
+    (0.865_063_366_688_984_5, 0.149_451_349_150_580_6),
+    (0.973_906_528_517_171_7, 0.066_671_344_308_688_14),
+];
+
+impl Surface {
+    /// The arc length of curve `curve` between parameters t0 and t1
+    /// (negative when t1 < t0), by adaptive Gauss–Legendre quadrature of
+    /// |X′| to 1e-13 relative per unit segment.
+    pub fn curve_length(&self, curve: usize, t0: f64, t1: f64) -> Result<f64> {
+        let c = self.curve(curve)?;
+        let (a, b) = (self.curve_parameter(c, t0)?, self.curve_parameter(c, t1)?);
+        let (lo, hi, sign) = if a <= b { (a, b, 1.0) } else { (b, a, -1.0) };
+        let mut total = 0.0;
+        let mut k = lo.floor();
+        while k < hi {
+            let (x, y) = (lo.max(k), hi.min(k + 1.0));
+            if y > x {
+                total += self.segment_length(curve, x, y, 0)?;
+            }
+            k += 1.0;
+        }
+        Ok(sign * total)
+    }
+
+    /// ∫ |X′| over [a, b] inside one unit segment, halving until the halves
+    /// agree with the whole.
+    fn segment_length(&self, curve: usize, a: f64, b: f64, depth: u32) -> Result<f64> {
+        let whole = self.gauss(curve, a, b)?;
+        let m = 0.5 * (a + b);
+        let halves = self.gauss(curve, a, m)? + self.gauss(curve, m, b)?;
+        if (whole - halves).abs() <= 1e-13 * halves.abs() || depth >= 40 {
+            return Ok(halves);
+        }
+        Ok(self.segment_length(curve, a, m, depth + 1)?
+            + self.segment_length(curve, m, b, depth + 1)?)
+    }
+
+    fn gauss(&self, curve: usize, a: f64, b: f64) -> Result<f64> {
+        let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
+        let mut sum = 0.0;
+        for (x, w) in GAUSS {
+            sum += w * self.curve_eval(curve, m - h * x)?.dx.length();
+            sum += w * self.curve_eval(curve, m + h * x)?.dx.length();
+        }
+        Ok(h * sum)
+    }
+
+    /// The parameter t at arc length `s` from t = 0 along curve `curve`
+    /// (0 ≤ s ≤ its length), so a mesher can place equally spaced points:
+    /// the segment by cumulative lengths, then Newton on the length inside
+    /// it, safeguarded by bisection.
+    pub fn curve_param_at_length(&self, curve: usize, s: f64) -> Result<f64> {
+        let c = self.curve(curve)?;
+        let n = c.len();
+        let mut cumulative = 0.0;
+        for k in 0..n {
+            let seg = self.segment_length(curve, k as f64, k as f64 + 1.0, 0)?;
+            if s <= cumulative + seg || k + 1 == n {
+                let target = s - cumulative;
+                if !(target >= -1e-12 * seg && target <= seg * (1.0 + 1e-12)) || !s.is_finite() {
+                    return Err(Error::InvalidArgument(format!(
+                        "arc length {s}: outside [0, {}] of curve {curve}",
+                        cumulative + seg
+                    )));
+                }
+                let (mut lo, mut hi) = (k as f64, k as f64 + 1.0);
+                let mut t = lo + target / seg.max(f64::MIN_POSITIVE);
+                for _ in 0..60 {
+                    let f = self.curve_length(curve, k as f64, t)? - target;
+                    if f.abs() <= 1e-14 * seg.max(f64::MIN_POSITIVE) {
+                        break;
+                    }
+                    if f > 0.0 {
+                        hi = t;
+                    } else {
+                        lo = t;
+                    }
+                    let speed = self.curve_eval(curve, t)?.dx.length();
+                    let newton = t - f / speed;
+                    t = if speed > 0.0 && newton > lo && newton < hi {
+                        newton
+                    } else {
+                        0.5 * (lo + hi)
+                    };
+                }
+                return Ok(t.clamp(k as f64, k as f64 + 1.0));
+            }
+            cumulative += seg;
+        }
+        unreachable!("a curve has at least one control edge")
+    }
+
+    /// The surface points of curve parameter t: (face, triangle, v, w) on
+    /// each side of the curve (one for a boundary curve; a dart's slit has
+    /// its face twice), in the order of [`Curve::faces`].
+    pub fn curve_surface_points(
+        &self,
+        curve: usize,
+        t: f64,
+    ) -> Result<Vec<(u32, crate::refine::SurfacePoint)>> {
+        let c = self.curve(curve)?;
+        let t = self.curve_parameter(c, t)?;
+        let k = (t.floor() as usize).min(c.len() - 1);
+        let s = t - k as f64;
+        let topo = self.net().topology();
+        let face_of = self.model().face_of_triangle();
+        let mut out = Vec::new();
+        for tri in topo.edge_triangles()[c.edges[k] as usize] {
+            if tri == NONE {
+                continue;
+            }
+            let corners = topo.triangles()[tri as usize];
+            let uv = |v: u32| {
+                [DVec2::ZERO, DVec2::X, DVec2::Y][corners.iter().position(|&x| x == v).unwrap_or(0)]
+            };
+            let (a, b) = (uv(c.chain[k]), uv(c.chain[k + 1]));
+            let q = a + s * (b - a);
+            let forward = crate::model::runs(topo, tri, c.chain[k], c.chain[k + 1]);
+            out.push((
+                usize::from(!forward),
+                face_of[tri as usize],
+                crate::refine::SurfacePoint {
+                    tri,
+                    v: q.x,
+                    w: q.y,
+                },
+            ));
+        }
+        out.sort_by_key(|x| x.0);
+        Ok(out.into_iter().map(|(_, f, p)| (f, p)).collect())
+    }
+
+    /// Local projection of p onto curve `curve` from the guess t: Newton on
+    /// (X − p)·X′ = 0 with step halving on the distance, across segments
+    /// (around a closed loop too). Fast, and proves nothing
+    /// (`lower_bound` = 0).
+    pub fn curve_project(&self, curve: usize, p: DVec3, t: f64) -> Result<CurveSnap> {
+        let c = self.curve(curve)?;
+        if !p.is_finite() {
+            return Err(Error::InvalidArgument(format!(
+                "point {:?} is not finite",
+                p.to_array()
+            )));
+        }
+        let t = self.curve_parameter(c, t)?;
+        let (t, point) = self.descend_curve(curve, c, p, t)?;
+        Ok(CurveSnap {
+            t,
+            point,
+            distance: (point - p).length(),
+            lower_bound: 0.0,
+        })
+    }
+
+    /// Newton descent of |X(t) − p|² from t, returning the local minimiser.
+    fn descend_curve(&self, curve: usize, c: &Curve, p: DVec3, mut t: f64) -> Result<(f64, DVec3)> {
+        let n = c.len() as f64;
+        let wrap = |t: f64| {
+            if c.is_closed() {
+                t.rem_euclid(n)
+            } else {
+                t.clamp(0.0, n)
+            }
+        };
+        let mut e = self.curve_eval(curve, t)?;
+        let mut f = (e.x - p).length_squared();
+        for _ in 0..100 {
+            let g = (e.x - p).dot(e.dx);
+            let h = e.dx.length_squared() + (e.x - p).dot(e.ddx);
+            let mut step = if h > 0.0 { -g / h } else { -g.signum() * 0.25 };
+            if !step.is_finite() || e.at_special_vertex {
+                step = if e.at_special_vertex {
+                    1e-3 * if t > 0.5 * n { -1.0 } else { 1.0 }
+                } else {
+                    0.0
+                };
+            }
+            step = step.clamp(-1.0, 1.0);
+            let mut moved = false;
+            for _ in 0..40 {
+                let t1 = wrap(t + step);
+                let e1 = self.curve_eval(curve, t1)?;
+                let f1 = (e1.x - p).length_squared();
+                if f1 < f {
+                    t = t1;
+                    e = e1;
+                    f = f1;
+                    moved = true;
+                    break;
+                }
+                step *= 0.5;
+            }
+            if !moved || step.abs() <= 1e-15 * n.max(1.0) {
+                break;
+            }
+        }
+        Ok((t, e.x))
+    }
+
+    /// The point of curve `curve` nearest to p, global and proven within
+    /// [`crate::snap::DEFAULT_TOLERANCE`] × the diagonal (see
+    /// [`Surface::curve_closest_point_within`]).
+    pub fn curve_closest_point(&self, curve: usize, p: DVec3) -> Result<CurveSnap> {
+        self.curve_closest_point_within(curve, p, crate::snap::DEFAULT_TOLERANCE)
+    }
+
+    /// The global nearest point of curve `curve` to p with a certificate:
+    /// branch and bound over the curve's pieces. A B-spline segment is a
+    /// cubic Bézier curve inside the hull (here the box) of its four
+    /// control points, split by de Casteljau until the box's distance
+    /// closes it against the best point found (local Newton from each
+    /// piece). A segment next to a dart tip is not polynomial: it is
+    /// bounded by the box of the control points its limit is a convex
+    /// combination of (the rings of its two end vertices), sampled and
+    /// solved for, and not split; its bound is the weaker one then.
+    pub fn curve_closest_point_within(
+        &self,
+        curve: usize,
+        p: DVec3,
+        tolerance: f64,
+    ) -> Result<CurveSnap> {
+        let c = self.curve(curve)?;
+        if !p.is_finite() {
+            return Err(Error::InvalidArgument(format!(
+                "point {:?} is not finite",
+                p.to_array()
+            )));
+        }
+        if !(tolerance > 0.0 && tolerance.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "tolerance {tolerance}: must be positive"
+            )));
+        }
+        let tol = 0.99 * tolerance * self.net().bbox_diagonal();
+        let mut best = CurveSnap {
+            t: 0.0,
+            point: DVec3::NAN,
+            distance: f64::INFINITY,
+            lower_bound: 0.0,
+        };
+        let consider = |t: f64, best: &mut CurveSnap| -> Result<()> {
+            let (t, x) = self.descend_curve(curve, c, p, t)?;
+            let d = (x - p).length();
+            if d < best.distance {
+                *best = CurveSnap {
+                    t,
+                    point: x,
+                    distance: d,
+                    lower_bound: 0.0,
+                };
+            }
+            Ok(())
+        };
+        // Pieces: (lower bound, segment, s0, s1, Bézier points).
+        let mut heap: Vec<(f64, usize, f64, f64, [DVec3; 4])> = Vec::new();
+        let mut closed_bound = f64::INFINITY;
+        for k in 0..c.len() {
+            if self.near_dart(c, k) {
+                for i in 0..=16 {
+                    consider(k as f64 + i as f64 / 16.0, &mut best)?;
+                }
+                closed_bound = closed_bound.min(box_distance(p, &self.segment_support(c, k)));
+                continue;
+            }
+            let b = self.bezier_of_segment(c, k);
+            heap.push((box_distance(p, &b), k, 0.0, 1.0, b));
+            consider(k as f64 + 0.5, &mut best)?;
+        }
+        let mut splits = 0;
+        while let Some(i) = (0..heap.len()).min_by(|&i, &j| heap[i].0.total_cmp(&heap[j].0)) {
+            let (bound, k, s0, s1, b) = heap.swap_remove(i);
+            if bound >= best.distance - tol || splits >= 20_000 || s1 - s0 < 1e-15 {
+                closed_bound = closed_bound.min(bound);
+                continue;
+            }
+            // Where |B − p|² is proven convex over the piece its minimum is
+            // the piece's bound, found by golden section.
+            if let Some((s, d)) = convex_minimum(&b, p) {
+                let t = k as f64 + s0 + s * (s1 - s0);
+                let x = self.curve_eval(curve, t)?.x;
+                if (x - p).length() < best.distance {
+                    best = CurveSnap {
+                        t,
+                        point: x,
+                        distance: (x - p).length(),
+                        lower_bound: 0.0,
+                    };
+                }
+                closed_bound = closed_bound
+                    .min(d - 1e-14 * (self.net().bbox_diagonal() + p.abs().max_element()));
+                continue;
+            }
+            splits += 1;
+            consider(k as f64 + 0.5 * (s0 + s1), &mut best)?;
+            let (l, r) = split_bezier(&b);
+            let m = 0.5 * (s0 + s1);
+            heap.push((box_distance(p, &l), k, s0, m, l));
+            heap.push((box_distance(p, &r), k, m, s1, r));
+        }
+        best.lower_bound = closed_bound.min(best.distance);
+        Ok(best)
+    }
+
+    /// The cubic Bézier points of B-spline segment k (displacement added).
+    fn bezier_of_segment(&self, c: &Curve, k: usize) -> [DVec3; 4] {
+        let [p0, p1, p2, p3] = [-1isize, 0, 1, 2].map(|d| self.chain_point(c, k as isize + d));
+        let mut b = [
+            (p0 + 4.0 * p1 + p2) / 6.0,
+            (2.0 * p1 + p2) / 3.0,
+            (p1 + 2.0 * p2) / 3.0,
+            (p1 + 4.0 * p2 + p3) / 6.0,
+        ];
+        if self.mode() == crate::surface::SurfaceMode::Displacement {
+            let (da, db) = (
+                self.displacement_of(c.chain[k]),
+                self.displacement_of(c.chain[k + 1]),
+            );
+            for (i, x) in b.iter_mut().enumerate() {
+                let s = i as f64 / 3.0;
+                *x += (1.0 - s) * da + s * db;
+            }
+        }
+        b
+    }
+
+    /// Control points whose convex hull holds segment k's limit: the two
+    /// rings around its end vertices (a superset of the 1-rings of both
+    /// adjacent triangles' corners; every Loop mask is a convex
+    /// combination), shifted by the end displacements in displacement mode.
+    fn segment_support(&self, c: &Curve, k: usize) -> Vec<DVec3> {
+        let topo = self.net().topology();
+        let pts = self.net().points();
+        let mut out = Vec::new();
+        for v in [c.chain[k], c.chain[k + 1]] {
+            out.push(pts[v as usize]);
+            for &u in topo.ring(v as usize) {
+                out.extend(topo.ring(u as usize).iter().map(|&w| pts[w as usize]));
+            }
+        }
+        if self.mode() == crate::surface::SurfaceMode::Displacement {
+            let (da, db) = (
+                self.displacement_of(c.chain[k]),
+                self.displacement_of(c.chain[k + 1]),
+            );
+            out = out.iter().flat_map(|&x| [x + da, x + db]).collect();
+        }
+        out
+    }
+}
+
+/// Distance from p to the axis-aligned box of `points`.
+fn box_distance(p: DVec3, points: &[DVec3]) -> f64 {
+    let lo = points.iter().fold(DVec3::INFINITY, |a, &x| a.min(x));
+    let hi = points.iter().fold(DVec3::NEG_INFINITY, |a, &x| a.max(x));
+    (lo - p).max(p - hi).max(DVec3::ZERO).length()
+}
+
+/// The minimum over s ∈ [0, 1] of |B(s) − p| when |B − p|² is convex
+/// there, proven by the Bernstein coefficients of its second derivative
+/// (a degree-6 polynomial's, all non-negative); None otherwise.
+fn convex_minimum(b: &[DVec3; 4], p: DVec3) -> Option<(f64, f64)> {
+    let q = b.map(|x| x - p);
+    // |B − p|² in Bernstein form of degree 6: c_k = Σ_{i+j=k} C(3,i) C(3,j)
+    // q_i·q_j / C(6,k).
+    const C3: [f64; 4] = [1.0, 3.0, 3.0, 1.0];
+    const C6: [f64; 7] = [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0];
+    let mut c = [0.0; 7];
+    for i in 0..4 {
+        for j in 0..4 {
+            c[i + j] += C3[i] * C3[j] * q[i].dot(q[j]);
+        }
+    }
+    for k in 0..7 {
+        c[k] /= C6[k];
+    }
+    let convex = (0..5).all(|k| c[k + 2] - 2.0 * c[k + 1] + c[k] >= 0.0);
+    if !convex {
+        return None;
+    }
+    let f = |s: f64| {
+        let mut v = c;
+        for n in (1..7).rev() {
+            for k in 0..n {
+                v[k] = (1.0 - s) * v[k] + s * v[k + 1];
+            }
+        }
+        v[0]
+    };
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..80 {
+        let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if f(x1) <= f(x2) {
+            hi = x2;
+        } else {
+            lo = x1;
+        }
+    }
+    let s = 0.5 * (lo + hi);
+    Some((s, f(s).max(0.0).sqrt()))
+}
+
+/// De Casteljau at ½.
+fn split_bezier(b: &[DVec3; 4]) -> ([DVec3; 4], [DVec3; 4]) {
+    let m = |a: DVec3, b: DVec3| 0.5 * (a + b);
+    let (a1, b1, c1) = (m(b[0], b[1]), m(b[1], b[2]), m(b[2], b[3]));
+    let (a2, b2) = (m(a1, b1), m(b1, c1));
+    let mid = m(a2, b2);
+    ([b[0], a1, a2, mid], [mid, b2, c1, b[3]])
+}
