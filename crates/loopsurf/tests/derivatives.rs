@@ -133,3 +133,42 @@ fn corners_creases_and_high_valence() {
     assert!(dart.vertex_kinds().contains(&VertexKind::Dart));
     check("bicone with a dart", &dart);
 }
+
+/// The normal exactly at a special vertex is the normal its sector tends
+/// to from inside the triangle. CGAL's cross.off and joint.off at 30° have
+/// corners where three creases meet next to reflex sectors: there the
+/// tangent masks once gave normals 45° off (cross) or reversed (joint).
+#[test]
+fn normals_at_special_vertices_are_the_sector_limits() {
+    for (name, worst_allowed) in [
+        ("cross.off", 1e-3),
+        ("joint.off", 1e-3),
+        ("fandisk.off", 2.0),
+    ] {
+        let Some(path) = common::cgal_mesh(name) else {
+            return;
+        };
+        let mut net = ControlNet::read(path).unwrap();
+        net.tag_by_angle(30.0).unwrap();
+        let surface = Surface::new(&net).unwrap();
+        let mut checked = 0;
+        for t in 0..net.triangles().len() {
+            for (v, w) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
+                let Ok(n) = surface.normal(t, v, w) else {
+                    continue;
+                };
+                let h = 1e-11;
+                let inside = surface
+                    .normal(t, v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w))
+                    .unwrap();
+                let angle = n.angle_between(inside).to_degrees();
+                assert!(
+                    angle <= worst_allowed,
+                    "{name}: triangle {t} at ({v}, {w}): {angle}°"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > net.triangles().len(), "{name}: {checked}");
+    }
+}
