@@ -318,10 +318,10 @@ impl Surface {
     /// matrix; at a corner whose creases share the eigenvalue ½, or next to
     /// a sector whose own mode dominates (a reflex sector), that pair mixes
     /// modes of other sectors and the normal can be off or reversed (CGAL's
-    /// cross.off at 30°: 45°; joint: 180°). Then the normal is the limit of
-    /// the sector's normals approached from inside, when they settle (to
-    /// 1e-9 between 2⁻³⁰ and 2⁻⁴⁰ of the way), and otherwise there is no
-    /// tangent plane to claim.
+    /// cross.off at 30°: 45°; joint: 180°), and the normals inside do not
+    /// approach it. Then the normal is the limit of the sector's normals
+    /// approached from inside, when they settle (to 1e-9 at 2⁻²⁰, 2⁻⁴⁰
+    /// and 2⁻⁶⁰ of the way), and otherwise there is no tangent plane to claim.
     fn vertex_normal(
         &self,
         tri: usize,
@@ -339,17 +339,28 @@ impl Surface {
             vertex,
             kind: "special",
         };
-        let (far, near) = (inside(0.5f64.powi(30)), inside(0.5f64.powi(40)));
-        let Some(near) = near else {
+        let depths = [20, 40, 60].map(|k| inside(0.5f64.powi(k)));
+        let [Some(n20), Some(n40), Some(n60)] = depths else {
             return masked.ok_or(none);
         };
-        // Darts converge slowly (about 0.85 a level): 1e-2 rad at 2^-40.
-        if let Some(n) = masked.filter(|n| n.angle_between(near) < 1e-2) {
+        // The masks are right when the normals inside approach them: close
+        // by 2^-60 (darts converge at about 0.85 a level), or closing in
+        // all the way down (high valences converge very slowly: 0.998 a
+        // level at valence 80).
+        let approaching = |n: &DVec3| {
+            let (a20, a40, a60) = (n.angle_between(n20), n.angle_between(n40), n.angle_between(n60));
+            a60 < 1e-2 || (a40 < a20 * (1.0 - 1e-6) && a60 < a40 * (1.0 - 1e-6))
+        };
+        if let Some(n) = masked.filter(approaching) {
             return Ok(n);
         }
-        match far {
-            Some(far) if far.angle_between(near) < 1e-9 => Ok(near),
-            _ => Err(none),
+        // Otherwise the sector's normals must have settled; where they keep
+        // turning or flip (a reflex sector whose limit surface folds at the
+        // corner) there is no tangent plane.
+        if n20.angle_between(n40) < 1e-9 && n40.angle_between(n60) < 1e-9 {
+            Ok(n60)
+        } else {
+            Err(none)
         }
     }
 

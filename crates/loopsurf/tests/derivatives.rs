@@ -135,16 +135,15 @@ fn corners_creases_and_high_valence() {
 }
 
 /// The normal exactly at a special vertex is the normal its sector tends
-/// to from inside the triangle. CGAL's cross.off and joint.off at 30° have
-/// corners where three creases meet next to reflex sectors: there the
-/// tangent masks once gave normals 45° off (cross) or reversed (joint).
+/// to from inside the triangle: the normals inside approach it (at a crease
+/// of fandisk only about 0.9 a level). CGAL's cross.off and joint.off at
+/// 30° have corners where three creases meet next to reflex sectors: there
+/// the tangent masks once gave normals 45° off (cross) or reversed (joint),
+/// which the normals inside kept at that angle. (0.05° is the round-off
+/// floor of normals 2^-60 from a corner.)
 #[test]
 fn normals_at_special_vertices_are_the_sector_limits() {
-    for (name, worst_allowed) in [
-        ("cross.off", 1e-3),
-        ("joint.off", 1e-3),
-        ("fandisk.off", 2.0),
-    ] {
+    for name in ["cross.off", "joint.off", "fandisk.off"] {
         let Some(path) = common::cgal_mesh(name) else {
             return;
         };
@@ -157,14 +156,17 @@ fn normals_at_special_vertices_are_the_sector_limits() {
                 let Ok(n) = surface.normal(t, v, w) else {
                     continue;
                 };
-                let h = 1e-11;
-                let inside = surface
-                    .normal(t, v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w))
-                    .unwrap();
-                let angle = n.angle_between(inside).to_degrees();
+                let angle = |levels: i32| {
+                    let h = 0.5f64.powi(levels);
+                    let inside = surface
+                        .normal(t, v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w))
+                        .unwrap();
+                    n.angle_between(inside).to_degrees()
+                };
+                let (far, near) = (angle(30), angle(60));
                 assert!(
-                    angle <= worst_allowed,
-                    "{name}: triangle {t} at ({v}, {w}): {angle}°"
+                    near <= 0.05 || near < 0.99 * far,
+                    "{name}: triangle {t} at ({v}, {w}): {far}° at 2^-30, {near}° at 2^-60"
                 );
                 checked += 1;
             }
