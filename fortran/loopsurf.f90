@@ -4,10 +4,11 @@
 !  * `ls_*` — bind(C) interfaces to the C ABI, one for one (see loopsurf.h).
 !    Handles are type(c_ptr); indices are 0-BASED, exactly as in C.
 !  * `loopsurf_*` — thin convenience wrappers taking Fortran strings and
-!    arrays. Their triangle and vertex indices are 1-BASED (Fortran
-!    convention): triangle 1 is the first triangle of the file, and
+!    arrays. Their triangle and vertex indices, and the model's face, curve
+!    and corner ids, are 1-BASED (Fortran convention; 0 means none):
+!    triangle 1 is the first triangle of the file, and
 !    `loopsurf_from_arrays` takes tris(3, ntris) with 1-based vertex numbers.
-!    Parameters (v, w) are the same in both layers.
+!    Parameters (v, w) and a curve's t are the same in both layers.
 ! Every function returns a status: LS_OK (0) or a negative LS_ERR_* code;
 ! `loopsurf_last_error()` then says what failed and why.
 module loopsurf
@@ -233,6 +234,113 @@ module loopsurf
             integer(c_size_t), intent(out) :: nverts, ntris
             type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
         end function
+        ! The model: faces, curves, corners (0-based ids, -1 for none) and
+        ! the exact limit curves, t in [0, n_edges].
+        integer(c_int) function ls_model_counts(surface, nfaces, ncurves, ncorners) &
+                bind(C, name="ls_model_counts")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), intent(out) :: nfaces, ncurves, ncorners
+        end function
+        integer(c_int) function ls_model_corner(surface, corner, vertex, xyz) bind(C, name="ls_model_corner")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: corner
+            integer(c_int32_t), intent(out) :: vertex
+            real(c_double), intent(out) :: xyz(3)
+        end function
+        integer(c_int) function ls_model_curve(surface, curve, n_edges, corners, faces) &
+                bind(C, name="ls_model_curve")
+            import :: c_int, c_int32_t, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            integer(c_size_t), intent(out) :: n_edges
+            integer(c_int32_t), intent(out) :: corners(2), faces(2)
+        end function
+        integer(c_int) function ls_model_curve_chain(surface, curve, chain) bind(C, name="ls_model_curve_chain")
+            import :: c_int, c_int32_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            integer(c_int32_t), intent(out) :: chain(*)
+        end function
+        integer(c_int) function ls_model_face(surface, face, ntriangles, nloops) bind(C, name="ls_model_face")
+            import :: c_int, c_int32_t, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: face
+            integer(c_size_t), intent(out) :: ntriangles, nloops
+        end function
+        integer(c_int) function ls_model_face_triangles(surface, face, tris) &
+                bind(C, name="ls_model_face_triangles")
+            import :: c_int, c_int32_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: face
+            integer(c_int32_t), intent(out) :: tris(*)
+        end function
+        ! Two calls: without curves and forward (both absent) only n is written.
+        integer(c_int) function ls_model_face_loop(surface, face, loop_index, n, curves, forward) &
+                bind(C, name="ls_model_face_loop")
+            import :: c_int, c_int32_t, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: face, loop_index
+            integer(c_size_t), intent(out) :: n
+            integer(c_int32_t), intent(out), optional :: curves(*), forward(*)
+        end function
+        integer(c_int) function ls_model_triangle_face(surface, tri, face) bind(C, name="ls_model_triangle_face")
+            import :: c_int, c_int32_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: tri
+            integer(c_int32_t), intent(out) :: face
+        end function
+        integer(c_int) function ls_curve_evaluate(surface, curve, t, result) bind(C, name="ls_curve_evaluate")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            real(c_double), value :: t
+            real(c_double), intent(out) :: result(9)
+        end function
+        integer(c_int) function ls_curve_length(surface, curve, t0, t1, length) bind(C, name="ls_curve_length")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            real(c_double), value :: t0, t1
+            real(c_double), intent(out) :: length
+        end function
+        integer(c_int) function ls_curve_param_at_length(surface, curve, s, t) &
+                bind(C, name="ls_curve_param_at_length")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            real(c_double), value :: s
+            real(c_double), intent(out) :: t
+        end function
+        integer(c_int) function ls_curve_surface_points(surface, curve, t, n, faces, tris, vw) &
+                bind(C, name="ls_curve_surface_points")
+            import :: c_int, c_int32_t, c_size_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            real(c_double), value :: t
+            integer(c_size_t), intent(out) :: n
+            integer(c_int32_t), intent(out) :: faces(2), tris(2)
+            real(c_double), intent(out) :: vw(4)
+        end function
+        integer(c_int) function ls_curve_project(surface, curve, xyz, t_guess, t, xyz_out, distance) &
+                bind(C, name="ls_curve_project")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            real(c_double), intent(in) :: xyz(3)
+            real(c_double), value :: t_guess
+            real(c_double), intent(out) :: t, xyz_out(3), distance
+        end function
+        integer(c_int) function ls_curve_snap(surface, curve, xyz, tolerance, t, xyz_out, distance, lower_bound) &
+                bind(C, name="ls_curve_snap")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_int32_t), value :: curve
+            real(c_double), intent(in) :: xyz(3)
+            real(c_double), value :: tolerance
+            real(c_double), intent(out) :: t, xyz_out(3), distance, lower_bound
+        end function
         subroutine ls_free_array(array) bind(C, name="ls_free_array")
             import :: c_ptr
             type(c_ptr), value :: array
@@ -401,6 +509,189 @@ contains
         xyz_out = answer%xyz
         distance = answer%distance
         lower_bound = answer%lower_bound
+    end function
+
+    ! The model with 1-BASED ids: faces, curves, corners, triangles and
+    ! vertices all count from 1, and 0 means none. A curve's parameter t
+    ! is the same as in C: [0, n_edges]. Arrays are allocated here, and left
+    ! untouched on failure.
+
+    !> The numbers of faces, curves and corners (ids 1 to each count).
+    integer function loopsurf_model_counts(surface, nfaces, ncurves, ncorners) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(out) :: nfaces, ncurves, ncorners
+        integer(c_size_t) :: f, c, k
+        status = ls_model_counts(surface, f, c, k)
+        if (status /= LS_OK) return
+        nfaces = int(f)
+        ncurves = int(c)
+        ncorners = int(k)
+    end function
+
+    !> Corner `corner`: its 1-BASED control vertex and its limit point.
+    integer function loopsurf_model_corner(surface, corner, vertex, xyz) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: corner
+        integer, intent(out) :: vertex
+        real(c_double), intent(out) :: xyz(3)
+        integer(c_int32_t) :: v
+        status = ls_model_corner(surface, int(corner - 1, c_int32_t), v, xyz)
+        if (status == LS_OK) vertex = int(v) + 1
+    end function
+
+    !> Curve `curve`: its number of control edges (t runs over [0, n_edges]),
+    !> its corners at t = 0 and t = n_edges (0, 0 for a closed loop) and its
+    !> faces on the left and on the right (0 for none: a boundary).
+    integer function loopsurf_model_curve(surface, curve, n_edges, corners, faces) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        integer, intent(out) :: n_edges, corners(2), faces(2)
+        integer(c_size_t) :: n
+        integer(c_int32_t) :: k(2), f(2)
+        status = ls_model_curve(surface, int(curve - 1, c_int32_t), n, k, f)
+        if (status /= LS_OK) return
+        n_edges = int(n)
+        corners = int(k) + 1
+        faces = int(f) + 1
+    end function
+
+    !> The n_edges + 1 control vertices (1-BASED) of curve `curve`, in
+    !> parameter order: chain(k + 1) is the vertex at t = k.
+    integer function loopsurf_model_curve_chain(surface, curve, chain) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        integer, allocatable, intent(inout) :: chain(:)
+        integer(c_size_t) :: n
+        integer(c_int32_t) :: k(2), f(2)
+        integer(c_int32_t), allocatable :: c(:)
+        status = ls_model_curve(surface, int(curve - 1, c_int32_t), n, k, f)
+        if (status /= LS_OK) return
+        allocate(c(n + 1))
+        status = ls_model_curve_chain(surface, int(curve - 1, c_int32_t), c)
+        if (status == LS_OK) chain = int(c) + 1
+    end function
+
+    !> Face `face`: its numbers of control triangles and of bounding loops.
+    integer function loopsurf_model_face(surface, face, ntriangles, nloops) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: face
+        integer, intent(out) :: ntriangles, nloops
+        integer(c_size_t) :: nt, nl
+        status = ls_model_face(surface, int(face - 1, c_int32_t), nt, nl)
+        if (status /= LS_OK) return
+        ntriangles = int(nt)
+        nloops = int(nl)
+    end function
+
+    !> The control triangles (1-BASED, ascending) of face `face`.
+    integer function loopsurf_model_face_triangles(surface, face, tris) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: face
+        integer, allocatable, intent(inout) :: tris(:)
+        integer(c_size_t) :: nt, nl
+        integer(c_int32_t), allocatable :: t(:)
+        status = ls_model_face(surface, int(face - 1, c_int32_t), nt, nl)
+        if (status /= LS_OK) return
+        allocate(t(nt))
+        status = ls_model_face_triangles(surface, int(face - 1, c_int32_t), t)
+        if (status == LS_OK) tris = int(t) + 1
+    end function
+
+    !> Loop `loop` of face `face`: its curves in the order the face's
+    !> triangles run its boundary, and whether each is run forward (from
+    !> t = 0 to n_edges). Each curve ends where the next one begins.
+    integer function loopsurf_model_face_loop(surface, face, loop, curves, forward) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: face, loop
+        integer, allocatable, intent(inout) :: curves(:)
+        logical, allocatable, intent(inout) :: forward(:)
+        integer(c_size_t) :: n
+        integer(c_int32_t), allocatable :: c(:), fw(:)
+        status = ls_model_face_loop(surface, int(face - 1, c_int32_t), int(loop - 1, c_int32_t), n)
+        if (status /= LS_OK) return
+        allocate(c(n), fw(n))
+        status = ls_model_face_loop(surface, int(face - 1, c_int32_t), int(loop - 1, c_int32_t), n, c, fw)
+        if (status /= LS_OK) return
+        curves = int(c) + 1
+        forward = fw /= 0
+    end function
+
+    !> The face of 1-BASED control triangle tri.
+    integer function loopsurf_model_triangle_face(surface, tri, face) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: tri
+        integer, intent(out) :: face
+        integer(c_int32_t) :: f
+        status = ls_model_triangle_face(surface, int(tri - 1, c_int32_t), f)
+        if (status == LS_OK) face = int(f) + 1
+    end function
+
+    !> X, X', X'' (9 numbers) of curve `curve` at t in [0, n_edges].
+    integer function loopsurf_curve_evaluate(surface, curve, t, result) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        real(c_double), intent(in) :: t
+        real(c_double), intent(out) :: result(9)
+        status = ls_curve_evaluate(surface, int(curve - 1, c_int32_t), t, result)
+    end function
+
+    !> The arc length of curve `curve` from t0 to t1.
+    integer function loopsurf_curve_length(surface, curve, t0, t1, length) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        real(c_double), intent(in) :: t0, t1
+        real(c_double), intent(out) :: length
+        status = ls_curve_length(surface, int(curve - 1, c_int32_t), t0, t1, length)
+    end function
+
+    !> The parameter t of curve `curve` at arc length s from t = 0.
+    integer function loopsurf_curve_param_at_length(surface, curve, s, t) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        real(c_double), intent(in) :: s
+        real(c_double), intent(out) :: t
+        status = ls_curve_param_at_length(surface, int(curve - 1, c_int32_t), s, t)
+    end function
+
+    !> The curve point at t on each side: n (1 on a boundary, else 2), and
+    !> for side i its face faces(i), triangle tris(i) (1-BASED; 0 when
+    !> unused) and (v, w) = vw(:, i), where loopsurf_evaluate gives the
+    !> curve point. Sides in the order of loopsurf_model_curve's faces.
+    integer function loopsurf_curve_surface_points(surface, curve, t, n, faces, tris, vw) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        real(c_double), intent(in) :: t
+        integer, intent(out) :: n, faces(2), tris(2)
+        real(c_double), intent(out) :: vw(2, 2)
+        integer(c_size_t) :: nn
+        integer(c_int32_t) :: f(2), tr(2)
+        status = ls_curve_surface_points(surface, int(curve - 1, c_int32_t), t, nn, f, tr, vw)
+        if (status /= LS_OK) return
+        n = int(nn)
+        faces = int(f) + 1
+        tris = int(tr) + 1
+    end function
+
+    !> The nearest LOCAL minimum of the distance from xyz to curve `curve`,
+    !> by Newton's method from t_guess: for points moved a little.
+    integer function loopsurf_curve_project(surface, curve, xyz, t_guess, t, xyz_out, distance) result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        real(c_double), intent(in) :: xyz(3), t_guess
+        real(c_double), intent(out) :: t, xyz_out(3), distance
+        status = ls_curve_project(surface, int(curve - 1, c_int32_t), xyz, t_guess, t, xyz_out, distance)
+    end function
+
+    !> The closest point of curve `curve` to xyz (global), with a proven
+    !> lower bound on the distance, within tolerance times the bounding-box
+    !> diagonal (0 for the default, 1d-12).
+    integer function loopsurf_curve_snap(surface, curve, xyz, tolerance, t, xyz_out, distance, lower_bound) &
+            result(status)
+        type(c_ptr), intent(in) :: surface
+        integer, intent(in) :: curve
+        real(c_double), intent(in) :: xyz(3), tolerance
+        real(c_double), intent(out) :: t, xyz_out(3), distance, lower_bound
+        status = ls_curve_snap(surface, int(curve - 1, c_int32_t), xyz, tolerance, t, xyz_out, distance, lower_bound)
     end function
 
     !> The last error on this thread, as a Fortran string.

@@ -155,6 +155,8 @@ program test_loopsurf
     open(newunit=unit, file=trim(path), status="old")
     close(unit, status="delete")
 
+    call test_model()
+
     call ls_version(major, minor, patch)
     call check(major == 0 .and. minor >= 1, "version")
 
@@ -169,6 +171,142 @@ program test_loopsurf
     print '(a)', "Fortran: all checks passed"
 
 contains
+    ! The model of a unit cube from 1-based arrays, every cube edge hard by
+    ! angle (90 > 30 degrees): 6 faces of 2 triangles, each with one loop of
+    ! 4 curves, 12 straight curves of one control edge, 8 fixed corners.
+    subroutine test_model()
+        real(c_double) :: cube(3, 8), e(9), e2(9), corner_xyz(3, 8), vw(2, 2), q(3), q2(3)
+        real(c_double) :: length, t, t2, dist, dist2, bound, r(18)
+        integer :: cube_tris(3, 12), nfaces, ncurves, ncorners, v, c, f, i, j, n, nt, nl, face
+        integer :: corners(2), faces(2), sides, sfaces(2), stris(2)
+        integer, allocatable :: chain(:), tris(:), curves(:), next_chain(:)
+        logical, allocatable :: forward(:)
+        integer(c_size_t) :: ntagged, nloop
+        integer(c_int32_t) :: loop_curves(4), loop_forward(4)
+        type(c_ptr) :: cnet, csurf
+
+        cube = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 1d0, 1d0, 0d0, 0d0, 1d0, 0d0, &
+                        0d0, 0d0, 1d0, 1d0, 0d0, 1d0, 1d0, 1d0, 1d0, 0d0, 1d0, 1d0], [3, 8])
+        cube_tris = reshape([1, 3, 2, 1, 4, 3, 5, 6, 7, 5, 7, 8, 1, 2, 6, 1, 6, 5, &
+                             2, 3, 7, 2, 7, 6, 3, 4, 8, 3, 8, 7, 4, 1, 5, 4, 5, 8], [3, 12])
+        call check(loopsurf_from_arrays(cube, cube_tris, cnet) == LS_OK, "cube")
+        ! (Fortran may evaluate the operands of .and. in any order: a call and
+        ! a test of its outputs take two statements.)
+        call check(ls_net_tag_by_angle(cnet, 30d0, ntagged) == LS_OK, "tag cube")
+        call check(ntagged == 12, "cube edges hard")
+        call check(ls_surface_build(cnet, csurf) == LS_OK, "cube surface")
+        call check(loopsurf_model_counts(csurf, nfaces, ncurves, ncorners) == LS_OK, "model counts")
+        call check(nfaces == 6 .and. ncurves == 12 .and. ncorners == 8, "6 faces, 12 curves, 8 corners")
+
+        ! Corners are fixed: vertex k, at its own point.
+        do i = 1, 8
+            call check(loopsurf_model_corner(csurf, i, v, corner_xyz(:, i)) == LS_OK, "corner")
+            call check(v == i .and. maxval(abs(corner_xyz(:, i) - cube(:, i))) <= 1d-15, "corner fixed")
+        end do
+
+        ! Each curve runs between its corners, straight; its ends are the
+        ! corner points, and its points lie on both faces.
+        do c = 1, 12
+            call check(loopsurf_model_curve(csurf, c, n, corners, faces) == LS_OK, "curve")
+            call check(n == 1 .and. all(corners >= 1) .and. all(faces >= 1) .and. faces(1) /= faces(2), &
+                "curve of one edge between two faces")
+            call check(loopsurf_model_curve_chain(csurf, c, chain) == LS_OK, "chain")
+            call check(size(chain) == 2 .and. all(chain == corners), "chain ends at its corners")
+            call check(loopsurf_curve_evaluate(csurf, c, 0d0, e) == LS_OK, "eval t = 0")
+            call check(maxval(abs(e(1:3) - corner_xyz(:, corners(1)))) <= 1d-15, "t = 0 at its first corner")
+            call check(loopsurf_curve_evaluate(csurf, c, 1d0, e) == LS_OK, "eval t = 1")
+            call check(maxval(abs(e(1:3) - corner_xyz(:, corners(2)))) <= 1d-15, "t = 1 at its last corner")
+            call check(loopsurf_curve_length(csurf, c, 0d0, 1d0, length) == LS_OK, "length")
+            call check(abs(length - 1d0) <= 1d-14, "unit length")
+            call check(loopsurf_curve_param_at_length(csurf, c, 0.25d0, t) == LS_OK, "param at length")
+            call check(abs(t - 0.25d0) <= 1d-12, "straight: t = s")
+            call check(loopsurf_curve_evaluate(csurf, c, t, e) == LS_OK, "eval at t")
+            call check(maxval(abs(e(1:3) - (0.75d0 * cube(:, chain(1)) + 0.25d0 * cube(:, chain(2))))) <= 1d-15, &
+                "on the straight edge")
+            call check(loopsurf_curve_surface_points(csurf, c, t, sides, sfaces, stris, vw) == LS_OK, "surface points")
+            call check(sides == 2 .and. all(sfaces == faces), "a point on both faces")
+            do j = 1, 2
+                call check(loopsurf_evaluate(csurf, stris(j), vw(1, j), vw(2, j), r) == LS_OK, "eval side")
+                call check(maxval(abs(r(1:3) - e(1:3))) <= 1d-14, "surface = curve")
+                call check(loopsurf_model_triangle_face(csurf, stris(j), face) == LS_OK, "triangle face")
+                call check(face == faces(j), "triangle's face")
+            end do
+        end do
+
+        ! Faces: two triangles and one loop of four curves that closes.
+        do f = 1, 6
+            call check(loopsurf_model_face(csurf, f, nt, nl) == LS_OK, "face")
+            call check(nt == 2 .and. nl == 1, "face of 2 triangles and 1 loop")
+            call check(loopsurf_model_face_triangles(csurf, f, tris) == LS_OK, "face triangles")
+            call check(all(tris == [2 * f - 1, 2 * f]), "face triangles in file order")
+            call check(loopsurf_model_face_loop(csurf, f, 1, curves, forward) == LS_OK, "face loop")
+            call check(size(curves) == 4, "loop of 4 curves")
+            do i = 1, 4
+                j = mod(i, 4) + 1
+                call check(loopsurf_model_curve_chain(csurf, curves(i), chain) == LS_OK, "loop chain")
+                call check(loopsurf_model_curve_chain(csurf, curves(j), next_chain) == LS_OK, "next chain")
+                call check(merge(chain(2), chain(1), forward(i)) == merge(next_chain(1), next_chain(2), forward(j)), &
+                    "loop closes")
+            end do
+        end do
+        ! The bind(C) layer: two calls, absent arrays first.
+        call check(ls_model_face_loop(csurf, 0_c_int32_t, 0_c_int32_t, nloop) == LS_OK, "loop size")
+        call check(nloop == 4, "loop of 4")
+        call check(ls_model_face_loop(csurf, 0_c_int32_t, 0_c_int32_t, nloop, loop_curves, loop_forward) == LS_OK, &
+            "loop arrays")
+        call check(all(loop_curves + 1 == curves_of_face(csurf, 1)) .and. all(loop_forward == 0 .or. loop_forward == 1), &
+            "0-based = 1-based - 1")
+
+        ! Snap and project onto curve 1 from 0.1 off its point at t = 0.3.
+        call check(loopsurf_curve_evaluate(csurf, 1, 0.3d0, e) == LS_OK, "eval for snap")
+        q = e(1:3) + 0.1d0 * cross_unit(e(4:6))
+        call check(loopsurf_curve_snap(csurf, 1, q, 0d0, t, q2, dist, bound) == LS_OK, "curve snap")
+        call check(abs(t - 0.3d0) <= 1d-9 .and. abs(dist - 0.1d0) <= 1d-14, "snapped back")
+        call check(bound <= dist .and. dist - bound <= 4d-12, "certificate")
+        call check(loopsurf_curve_evaluate(csurf, 1, t, e2) == LS_OK, "eval at snap")
+        call check(all(e2(1:3) == q2), "snap on the curve")
+        call check(loopsurf_curve_project(csurf, 1, q, 0.6d0, t2, q2, dist2) == LS_OK, "curve project")
+        call check(abs(t2 - t) <= 1d-9 .and. abs(dist2 - dist) <= 1d-14, "projected = snapped")
+
+        ! Errors: ids 0 and 13 (1-based), t outside [0, 1], NaN, bad tolerance.
+        call check(loopsurf_curve_evaluate(csurf, 0, 0d0, e) == LS_ERR_INDEX_OUT_OF_RANGE, "curve 0 (1-based)")
+        call check(index(loopsurf_last_error(), "curve -1: out of range (the model has 12 curves)") > 0, &
+            "message names the index and the count")
+        call check(loopsurf_curve_evaluate(csurf, 13, 0d0, e) == LS_ERR_INDEX_OUT_OF_RANGE, "curve 13 of 12")
+        call check(loopsurf_model_face(csurf, 7, nt, nl) == LS_ERR_INDEX_OUT_OF_RANGE, "face 7 of 6")
+        call check(loopsurf_model_corner(csurf, 9, v, q) == LS_ERR_INDEX_OUT_OF_RANGE, "corner 9 of 8")
+        call check(loopsurf_model_face_loop(csurf, 1, 2, curves, forward) == LS_ERR_INDEX_OUT_OF_RANGE, "loop 2 of 1")
+        call check(loopsurf_curve_evaluate(csurf, 1, 1.5d0, e) == LS_ERR_PARAMETER_OUT_OF_RANGE, "t = 1.5")
+        call check(loopsurf_curve_evaluate(csurf, 1, -0.5d0, e) == LS_ERR_PARAMETER_OUT_OF_RANGE, "t = -0.5")
+        call check(loopsurf_curve_evaluate(csurf, 1, ieee_nan(), e) == LS_ERR_NOT_FINITE, "t NaN")
+        call check(loopsurf_curve_param_at_length(csurf, 1, 2d0, t) == LS_ERR_PARAMETER_OUT_OF_RANGE, &
+            "arc length beyond the curve")
+        call check(loopsurf_curve_snap(csurf, 1, q, -1d0, t, q2, dist, bound) == LS_ERR_INVALID_ARGUMENT, &
+            "negative tolerance")
+
+        call ls_surface_free(csurf)
+        call ls_net_free(cnet)
+    end subroutine
+
+    ! The 1-based curves of loop 1 of face f.
+    function curves_of_face(surf, f) result(ids)
+        type(c_ptr), intent(in) :: surf
+        integer, intent(in) :: f
+        integer, allocatable :: ids(:)
+        logical, allocatable :: fw(:)
+        if (loopsurf_model_face_loop(surf, f, 1, ids, fw) /= LS_OK) allocate(ids(0))
+    end function
+
+    ! A unit vector across direction d.
+    function cross_unit(d) result(u)
+        real(c_double), intent(in) :: d(3)
+        real(c_double) :: u(3), a(3)
+        a = 0d0
+        a(minloc(abs(d), 1)) = 1d0
+        u = [d(2) * a(3) - d(3) * a(2), d(3) * a(1) - d(1) * a(3), d(1) * a(2) - d(2) * a(1)]
+        u = u / norm2(u)
+    end function
+
     subroutine check(ok, what)
         logical, intent(in) :: ok
         character(len=*), intent(in) :: what

@@ -62,7 +62,8 @@
 // A vertex or triangle index outside the net.
 #define LS_ERR_INDEX_OUT_OF_RANGE -6
 
-// (v, w) outside the triangle: v < 0, w < 0 or v + w > 1 beyond 1e-12.
+// (v, w) outside the triangle (v < 0, w < 0 or v + w > 1 beyond 1e-12),
+// or a curve parameter t outside [0, n] or an arc length outside [0, L].
 #define LS_ERR_PARAMETER_OUT_OF_RANGE -7
 
 // A NaN or infinite input number.
@@ -231,6 +232,171 @@ int ls_mesh(const ls_surface *surface,
             double **vertex_vw,
             int32_t **tri_chart,
             double **tri_vw);
+
+// The model face of every triangle of a mesh on the surface: triangle i,
+// inside control triangle `tri_chart[i]` (ls_mesh's `tri_chart`), lies in
+// face `tri_face[i]`, the face of its chart. Faces are the model's
+// (`ls_model_*`): maximal sets of control triangles connected across soft
+// edges, numbered by their first control triangle. `tri_face` is the
+// caller's array of `ntris` values, written only on success; the arrays
+// may be NULL when `ntris` is 0.
+int ls_mesh_face_labels(const ls_surface *surface,
+                        size_t ntris,
+                        const int32_t *tri_chart,
+                        int32_t *tri_face);
+
+// The hard edges of a mesh on the surface, with their model curves: the
+// mesh edges whose two ends lie on the same hard control edge (at one of
+// its end vertices or on it, by their (tri, v, w)). For ls_mesh's output
+// these are exactly the output edges along the net's hard edges.
+//
+// Input: the mesh as ls_mesh writes it: `nverts` vertices with their
+// control triangle `vertex_tri` (nverts) and (v, w) `vertex_vw` (2 ×
+// nverts), and `ntris` triangles `tris` (3 × ntris, 0-based).
+//
+// Writes `nhard` and new arrays `pairs` (2 × nhard vertex indices) and
+// `curves` (nhard curve ids, as `ls_model_*` number curves) and, unless
+// NULL, `curve_t` (2 × nhard): the curve parameters t of each pair's two
+// vertices, the curve (`ls_curve_evaluate`) at t being the vertex. Each
+// pair runs the way its curve does (t increasing), and the pairs are
+// ordered by curve and then by t, so that a curve's edges follow one
+// another from its start to its end. Release the arrays with
+// `ls_free_array`; nothing is written on failure.
+int ls_mesh_hard_edges(const ls_surface *surface,
+                       size_t nverts,
+                       const int32_t *vertex_tri,
+                       const double *vertex_vw,
+                       size_t ntris,
+                       const int32_t *tris,
+                       size_t *nhard,
+                       int32_t **pairs,
+                       int32_t **curves,
+                       double **curve_t);
+
+// Writes the numbers of faces, curves and corners of the model (the hard
+// features of the surface's net: see DESIGN.md, "The model"); each output
+// may be NULL. Valid ids are 0 to count − 1, in file order.
+int ls_model_counts(const ls_surface *surface, size_t *nfaces, size_t *ncurves, size_t *ncorners);
+
+// Corner `corner` of the model: its control vertex (0-based, into the
+// net's vertices) and its limit point `xyz` (3 doubles), where the curves
+// ending at it end. Corners are tagged vertices and vertices with other
+// than two hard edges (crease junctions, boundary corners, dart tips), in
+// vertex order.
+int ls_model_corner(const ls_surface *surface, int32_t corner, int32_t *vertex, double *xyz);
+
+// Curve `curve` of the model (a maximal chain of hard edges between
+// corners, or a closed loop): its number of control edges `n_edges` (its
+// parameter runs over [0, n_edges]; its chain has n_edges + 1 vertices),
+// its `corners` at t = 0 and t = n_edges (2 ids, both -1 for a closed
+// loop), and its `faces` (2 ids): on its left, whose triangles run the
+// chain forward, and on its right (-1 where there is none: a boundary). A
+// dart's crease is a slit with the same face on both sides.
+int ls_model_curve(const ls_surface *surface,
+                   int32_t curve,
+                   size_t *n_edges,
+                   int32_t *corners,
+                   int32_t *faces);
+
+// The control vertices of curve `curve` in parameter order (0-based):
+// `chain` must hold n_edges + 1 entries (n_edges from `ls_model_curve`),
+// chain[k] being the vertex at t = k. A closed loop repeats its first
+// vertex at the end.
+int ls_model_curve_chain(const ls_surface *surface, int32_t curve, int32_t *chain);
+
+// Face `face` of the model (a maximal set of control triangles connected
+// across soft edges): its number of triangles and of bounding loops (0 for
+// a closed surface without hard edges). Faces are numbered by their first
+// triangle.
+int ls_model_face(const ls_surface *surface, int32_t face, size_t *ntriangles, size_t *nloops);
+
+// The control triangles of face `face`, ascending (0-based): `tris` must
+// hold ntriangles entries (from `ls_model_face`).
+int ls_model_face_triangles(const ls_surface *surface, int32_t face, int32_t *tris);
+
+// Loop `loop_index` (0 to nloops − 1) of face `face`: its `n` curves in
+// the order the face's triangles run its boundary (counter-clockwise seen
+// from outside), and for each whether it is run in its own direction
+// (`forward[i]` = 1, from t = 0 to n_edges) or backward (0). Each curve
+// ends where the next one begins, the last where the first begins.
+// Two calls: with `curves` and `forward` both NULL only `n` is written;
+// then pass two arrays of n entries each.
+int ls_model_face_loop(const ls_surface *surface,
+                       int32_t face,
+                       int32_t loop_index,
+                       size_t *n,
+                       int32_t *curves,
+                       int32_t *forward);
+
+// The face of control triangle `tri` (0-based), e.g. of a snapped point.
+int ls_model_triangle_face(const ls_surface *surface, int32_t tri, int32_t *face);
+
+// The exact limit curve `curve` at parameter t ∈ [0, n_edges]: 9 doubles
+// X, X′, X″ (derivatives with respect to t). At integer t, X is the limit
+// point of chain vertex t, and at a corner the curve's end is the corner's
+// point. Exactly at a dart tip the parameterisation is singular: X is
+// exact and the derivatives are 0. Statuses: LS_ERR_INDEX_OUT_OF_RANGE
+// (curve), LS_ERR_PARAMETER_OUT_OF_RANGE (t outside [0, n_edges] beyond
+// 1e-12 n_edges), LS_ERR_NOT_FINITE (t NaN or infinite).
+int ls_curve_evaluate(const ls_surface *surface, int32_t curve, double t, double *result);
+
+// The arc length of curve `curve` from t0 to t1 (both in [0, n_edges];
+// negative when t1 < t0), by adaptive Gauss–Legendre quadrature to 1e-13
+// relative. Statuses as `ls_curve_evaluate`'s.
+int ls_curve_length(const ls_surface *surface, int32_t curve, double t0, double t1, double *length);
+
+// The parameter t of curve `curve` at arc length `s` from t = 0, for
+// 0 ≤ s ≤ the curve's length (`ls_curve_length` from 0 to n_edges): to
+// place points at equal spacing along a curve. s outside that range gives
+// LS_ERR_PARAMETER_OUT_OF_RANGE, NaN LS_ERR_NOT_FINITE.
+int ls_curve_param_at_length(const ls_surface *surface, int32_t curve, double s, double *t);
+
+// Where the point of curve `curve` at parameter t lies on the surface,
+// one entry per side: `n` (1 for a boundary curve, else 2), and for entry
+// i its face `faces[i]`, control triangle `tris[i]` and (v, w) =
+// (`vw[2i]`, `vw[2i+1]`), on the control edge under the curve, so that
+// `ls_evaluate(tris[i], vw[2i], vw[2i+1])` is the curve point to
+// round-off. With n = 2 the entries follow `ls_model_curve`'s faces (left,
+// right); an unused entry gets -1, -1 and NaN. `faces` and `tris` hold 2
+// entries, `vw` 4. Statuses as `ls_curve_evaluate`'s.
+int ls_curve_surface_points(const ls_surface *surface,
+                            int32_t curve,
+                            double t,
+                            size_t *n,
+                            int32_t *faces,
+                            int32_t *tris,
+                            double *vw);
+
+// The nearest LOCAL minimum of the distance from `xyz` to curve `curve`,
+// by Newton's method from the guess `t_guess` (across segments, and
+// around a closed loop): its parameter `t`, point `xyz_out` (3 doubles,
+// the curve at t bit for bit) and `distance`. Fast, for points moved a
+// little along a curve; no global search (`ls_curve_snap` is global).
+// Statuses as `ls_curve_evaluate`'s for `t_guess`; LS_ERR_NOT_FINITE for
+// a NaN or infinite `xyz`.
+int ls_curve_project(const ls_surface *surface,
+                     int32_t curve,
+                     const double *xyz,
+                     double t_guess,
+                     double *t,
+                     double *xyz_out,
+                     double *distance);
+
+// The closest point of curve `curve` to `xyz` — the global minimum of the
+// distance over the whole curve — with a proven lower bound on that
+// distance (the certificate): `distance` − `lower_bound` ≤ `tolerance` ×
+// the control net's bounding-box diagonal. `tolerance` 0 means the default
+// (1e-12); otherwise it must be positive. Writes the parameter `t`, the
+// point `xyz_out` (3 doubles, the curve at t bit for bit), `distance` and
+// `lower_bound`. LS_ERR_INVALID_ARGUMENT for a negative tolerance.
+int ls_curve_snap(const ls_surface *surface,
+                  int32_t curve,
+                  const double *xyz,
+                  double tolerance,
+                  double *t,
+                  double *xyz_out,
+                  double *distance,
+                  double *lower_bound);
 
 // Reads and validates a mesh file (.off .obj .ply .stl .tri, by extension)
 // into a new net. Errors name the file and, for text formats, the line.

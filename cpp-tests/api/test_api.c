@@ -588,6 +588,166 @@ static void test_mesh(void) {
     ls_surface_free(surface);
 }
 
+/* The model labels of a mesh (ls_mesh_face_labels, ls_mesh_hard_edges) on
+ * fandisk tagged at 30° (12 faces, 34 curves, 722 hard control edges):
+ * every output triangle has the face of its chart; the hard output edges
+ * are mesh edges, two per hard control edge at uniform 2, with curve ids in
+ * range, every curve present, each curve's edges a chain in increasing t
+ * from t = 0; two triangles of different faces meet only across a hard
+ * edge; bad arguments fail cleanly with the outputs untouched. */
+static int compare_i64(const void* a, const void* b) { return compare_edges(a, b); }
+
+static int64_t edge_key(int32_t a, int32_t b) {
+    return a < b ? (int64_t)a << 32 | (uint32_t)b : (int64_t)b << 32 | (uint32_t)a;
+}
+
+static void test_mesh_labels(const char* data_dir) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/fandisk.off", data_dir);
+    ls_net* net = NULL;
+    ls_surface* surface = NULL;
+    EXPECT(ls_net_load(path, &net), LS_OK);
+    if (!net) return;
+    EXPECT(ls_net_tag_by_angle(net, 30, NULL), LS_OK);
+    size_t ncv = 0, nct = 0, nch = 0;
+    EXPECT(ls_net_counts(net, &ncv, &nct, &nch), LS_OK);
+    CHECK(nch == 722);
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+
+    /* The faces of the control triangles themselves: ids 0..11, each used. */
+    int32_t* ident = malloc(nct * sizeof *ident);
+    int32_t* ctrl_face = malloc(nct * sizeof *ctrl_face);
+    for (size_t t = 0; t < nct; t++) ident[t] = (int32_t)t;
+    EXPECT(ls_mesh_face_labels(surface, nct, ident, ctrl_face), LS_OK);
+    int seen_face[12] = {0};
+    for (size_t t = 0; t < nct; t++) {
+        CHECK(ctrl_face[t] >= 0 && ctrl_face[t] < 12);
+        if (ctrl_face[t] >= 0 && ctrl_face[t] < 12) seen_face[ctrl_face[t]] = 1;
+    }
+    for (int f = 0; f < 12; f++) CHECK(seen_face[f]);
+
+    size_t nv = 0, nt = 0;
+    double *xyz = NULL, *vw = NULL;
+    int32_t *tris = NULL, *vtri = NULL, *chart = NULL;
+    EXPECT(ls_mesh(surface, 2, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &chart, NULL), LS_OK);
+    CHECK(nt == 4 * nct);
+    int32_t* face = malloc(nt * sizeof *face);
+    EXPECT(ls_mesh_face_labels(surface, nt, chart, face), LS_OK);
+    for (size_t t = 0; t < nt; t++) CHECK(face[t] == ctrl_face[chart[t]]);
+
+    size_t nh = 0;
+    int32_t *pairs = NULL, *curves = NULL;
+    double* ct = NULL;
+    EXPECT(ls_mesh_hard_edges(surface, nv, vtri, vw, nt, tris, &nh, &pairs, &curves, &ct), LS_OK);
+    CHECK(nh == 2 * nch);
+    /* Mesh edges, with the face on each side, sorted by key. */
+    int64_t* sides = malloc(3 * nt * sizeof *sides);
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) sides[3 * t + k] = edge_key(tris[3 * t + k], tris[3 * t + (k + 1) % 3]);
+    int64_t* keys = malloc(3 * nt * sizeof *keys);
+    memcpy(keys, sides, 3 * nt * sizeof *keys);
+    qsort(keys, 3 * nt, sizeof *keys, compare_i64);
+    int64_t* hard = malloc((nh ? nh : 1) * sizeof *hard);
+    int seen_curve[34] = {0};
+    for (size_t i = 0; i < nh; i++) {
+        int32_t a = pairs[2 * i], b = pairs[2 * i + 1], c = curves[i];
+        CHECK(a >= 0 && (size_t)a < nv && b >= 0 && (size_t)b < nv && a != b);
+        hard[i] = edge_key(a, b);
+        CHECK(bsearch(&hard[i], keys, 3 * nt, sizeof *keys, compare_i64) != NULL);
+        CHECK(c >= 0 && c < 34);
+        if (c < 0 || c >= 34) continue;
+        CHECK(ct[2 * i] < ct[2 * i + 1] && ct[2 * i] >= 0);
+        if (!seen_curve[c]) CHECK(ct[2 * i] == 0.0); /* a curve starts at t = 0 */
+        seen_curve[c] = 1;
+        if (i > 0) CHECK(curves[i - 1] <= c); /* ordered by curve */
+        if (i > 0 && curves[i - 1] == c) {
+            CHECK(pairs[2 * i - 1] == a); /* a chain along the curve */
+            CHECK(ct[2 * i - 1] == ct[2 * i]);
+        }
+    }
+    for (int c = 0; c < 34; c++) CHECK(seen_curve[c]);
+    /* Across every soft mesh edge the face is the same on both sides. */
+    qsort(hard, nh, sizeof *hard, compare_i64);
+    int64_t* keyed = malloc(3 * nt * 2 * sizeof *keyed); /* (key, face) pairs */
+    for (size_t i = 0; i < 3 * nt; i++) {
+        keyed[2 * i] = sides[i];
+        keyed[2 * i + 1] = face[i / 3];
+    }
+    qsort(keyed, 3 * nt, 2 * sizeof *keyed, compare_i64); /* by key only */
+    size_t crossings = 0;
+    for (size_t i = 0; i + 1 < 3 * nt; i++) {
+        if (keyed[2 * i] != keyed[2 * i + 2] || keyed[2 * i + 1] == keyed[2 * i + 3]) continue;
+        crossings++;
+        CHECK(bsearch(&keyed[2 * i], hard, nh, sizeof *hard, compare_i64) != NULL);
+    }
+    CHECK(crossings > 0 && crossings <= nh);
+    /* curve_t may be skipped. */
+    size_t nh2 = 0;
+    int32_t *pairs2 = NULL, *curves2 = NULL;
+    EXPECT(ls_mesh_hard_edges(surface, nv, vtri, vw, nt, tris, &nh2, &pairs2, &curves2, NULL), LS_OK);
+    CHECK(nh2 == nh && memcmp(pairs2, pairs, 2 * nh * sizeof *pairs) == 0);
+    ls_free_array(pairs2);
+    ls_free_array(curves2);
+    /* An empty mesh has no hard edge. */
+    EXPECT(ls_mesh_hard_edges(surface, 0, NULL, NULL, 0, NULL, &nh2, &pairs2, &curves2, NULL), LS_OK);
+    CHECK(nh2 == 0);
+    ls_free_array(pairs2);
+    ls_free_array(curves2);
+    EXPECT(ls_mesh_face_labels(surface, 0, NULL, NULL), LS_OK);
+
+    /* Failures leave every output untouched. */
+    int32_t* const untouched = (int32_t*)&SENTINEL;
+    pairs2 = untouched;
+    nh2 = 77;
+    int32_t labels[2] = {-5, -5};
+    const int32_t bad_chart[2] = {0, (int32_t)nct}, negative_chart[2] = {-1, 0};
+    EXPECT(ls_mesh_face_labels(NULL, 2, ident, labels), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_face_labels(surface, 2, NULL, labels), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_face_labels(surface, 2, ident, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_face_labels(surface, 2, bad_chart, labels), LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "ls_mesh_face_labels") != NULL && strstr(ls_last_error(), "triangle 1") != NULL);
+    EXPECT(ls_mesh_face_labels(surface, 2, negative_chart, labels), LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(labels[0] == -5 && labels[1] == -5);
+    EXPECT(ls_mesh_hard_edges(NULL, nv, vtri, vw, nt, tris, &nh2, &pairs2, &curves2, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_hard_edges(surface, nv, NULL, vw, nt, tris, &nh2, &pairs2, &curves2, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_hard_edges(surface, nv, vtri, vw, nt, NULL, &nh2, &pairs2, &curves2, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_hard_edges(surface, nv, vtri, vw, nt, tris, NULL, &pairs2, &curves2, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_hard_edges(surface, nv, vtri, vw, nt, tris, &nh2, &pairs2, NULL, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_hard_edges(surface, SIZE_MAX / 2, vtri, vw, nt, tris, &nh2, &pairs2, &curves2, NULL),
+           LS_ERR_INVALID_ARGUMENT);
+    const int32_t one_tri[1] = {0}, far_tri[1] = {(int32_t)nct}, bad_tris[3] = {0, 0, 1};
+    const double inside[2] = {0.25, 0.25}, outside[2] = {0.8, 0.7}, nan_vw[2] = {NAN, 0};
+    EXPECT(ls_mesh_hard_edges(surface, 1, far_tri, inside, 0, NULL, &nh2, &pairs2, &curves2, NULL),
+           LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "vertex 0") != NULL);
+    EXPECT(ls_mesh_hard_edges(surface, 1, one_tri, outside, 0, NULL, &nh2, &pairs2, &curves2, NULL),
+           LS_ERR_PARAMETER_OUT_OF_RANGE);
+    EXPECT(ls_mesh_hard_edges(surface, 1, one_tri, nan_vw, 0, NULL, &nh2, &pairs2, &curves2, NULL),
+           LS_ERR_NOT_FINITE);
+    EXPECT(ls_mesh_hard_edges(surface, 1, one_tri, inside, 1, bad_tris, &nh2, &pairs2, &curves2, NULL),
+           LS_ERR_INDEX_OUT_OF_RANGE);
+    CHECK(strstr(ls_last_error(), "triangle 0") != NULL);
+    CHECK(pairs2 == untouched && nh2 == 77);
+
+    free(keyed);
+    free(hard);
+    free(keys);
+    free(sides);
+    ls_free_array(pairs);
+    ls_free_array(curves);
+    ls_free_array(ct);
+    free(face);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    ls_free_array(chart);
+    free(ctrl_face);
+    free(ident);
+    ls_surface_free(surface);
+    ls_net_free(net);
+}
+
 static void test_adapt(void) {
     ls_surface* surface = octahedron(NULL);
     size_t nv = 0, nt = 0;
@@ -703,6 +863,7 @@ int main(int argc, char** argv) {
     test_queries();
     test_refine();
     test_mesh();
+    test_mesh_labels(data_dir);
     test_adapt();
     test_streams();
     const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",

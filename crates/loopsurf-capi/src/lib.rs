@@ -19,6 +19,7 @@
 mod adapt;
 mod buffers;
 mod mesh;
+mod model;
 mod net;
 mod project;
 mod snap;

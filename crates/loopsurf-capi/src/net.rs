@@ -60,7 +60,10 @@ pub unsafe extern "C" fn ls_net_load_with(
         if flags & !LS_LOAD_REPAIR != 0 {
             return Err(Fail::new(
                 LS_ERR_INVALID_ARGUMENT,
-                format!("flags {flags:#x}: unknown bits {:#x}", flags & !LS_LOAD_REPAIR),
+                format!(
+                    "flags {flags:#x}: unknown bits {:#x}",
+                    flags & !LS_LOAD_REPAIR
+                ),
             ));
         }
         let on = |flag: u32| flags & flag != 0;

@@ -21,7 +21,8 @@ pub const LS_ERR_NON_MANIFOLD: c_int = -4;
 pub const LS_ERR_DEGENERATE: c_int = -5;
 /// A vertex or triangle index outside the net.
 pub const LS_ERR_INDEX_OUT_OF_RANGE: c_int = -6;
-/// (v, w) outside the triangle: v < 0, w < 0 or v + w > 1 beyond 1e-12.
+/// (v, w) outside the triangle (v < 0, w < 0 or v + w > 1 beyond 1e-12),
+/// or a curve parameter t outside [0, n] or an arc length outside [0, L].
 pub const LS_ERR_PARAMETER_OUT_OF_RANGE: c_int = -7;
 /// A NaN or infinite input number.
 pub const LS_ERR_NOT_FINITE: c_int = -8;
@@ -167,7 +168,7 @@ pub extern "C" fn ls_status_string(status: c_int) -> *const c_char {
         LS_ERR_NON_MANIFOLD => c"LS_ERR_NON_MANIFOLD: the net is not manifold or not consistently oriented",
         LS_ERR_DEGENERATE => c"LS_ERR_DEGENERATE: empty net, zero-area triangle, repeated vertex, or no tangent plane",
         LS_ERR_INDEX_OUT_OF_RANGE => c"LS_ERR_INDEX_OUT_OF_RANGE: a vertex or triangle index outside the net",
-        LS_ERR_PARAMETER_OUT_OF_RANGE => c"LS_ERR_PARAMETER_OUT_OF_RANGE: (v, w) outside the triangle",
+        LS_ERR_PARAMETER_OUT_OF_RANGE => c"LS_ERR_PARAMETER_OUT_OF_RANGE: (v, w) outside the triangle, or a curve parameter or arc length outside its curve",
         LS_ERR_NOT_FINITE => c"LS_ERR_NOT_FINITE: a NaN or infinite number",
         LS_ERR_UNSUPPORTED => c"LS_ERR_UNSUPPORTED: not available in this version",
         LS_ERR_BAD_STREAM => c"LS_ERR_BAD_STREAM: truncated, damaged or foreign surface stream",

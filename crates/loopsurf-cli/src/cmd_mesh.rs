@@ -125,7 +125,11 @@ pub fn run(args: Args) -> Result<(), Error> {
 }
 
 /// The mesh in OUT's format; `.vtu` carries per-vertex parameters and
-/// curvature and per-cell chart and quality.
+/// curvature, per triangle its chart, quality and model `face`, and after
+/// the triangles one line cell per hard output edge with its model `edge`
+/// (curve) id, as `loopsurf topology` writes them. Each cell array holds -1
+/// on the cells it does not describe (`edge` on triangles; the others on
+/// the lines).
 fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) -> Result<(), Error> {
     let is_vtu = path
         .extension()
@@ -140,14 +144,33 @@ fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) ->
     let mean: Vec<f64> = curvature.iter().map(|c| c.mean).collect();
     let gaussian: Vec<f64> = curvature.iter().map(|c| c.gaussian).collect();
     let reliable: Vec<i32> = curvature.iter().map(|c| c.reliable as i32).collect();
-    let chart: Vec<i32> = mesh.charts.iter().map(|&c| c as i32).collect();
+    let lines = mesh.hard_edges.len();
+    let pad_i32 = |values: Vec<i32>| -> Vec<i32> {
+        values
+            .into_iter()
+            .chain(std::iter::repeat(-1).take(lines))
+            .collect()
+    };
+    let pad_f64 = |values: Vec<f64>| -> Vec<f64> {
+        values
+            .into_iter()
+            .chain(std::iter::repeat(-1.0).take(lines))
+            .collect()
+    };
+    let chart = pad_i32(mesh.charts.iter().map(|&c| c as i32).collect());
+    let face = pad_i32(mesh.faces.iter().map(|&f| f as i32).collect());
+    let edge: Vec<i32> = std::iter::repeat(-1)
+        .take(mesh.triangles.len())
+        .chain(mesh.hard_edge_curves.iter().map(|&c| c as i32))
+        .collect();
     let quality = mesh.triangle_quality();
-    let min_angle: Vec<f64> = quality.iter().map(|q| q.min_angle).collect();
-    let shape: Vec<f64> = quality.iter().map(|q| q.shape).collect();
-    io::write_vtu(
+    let min_angle = pad_f64(quality.iter().map(|q| q.min_angle).collect());
+    let shape = pad_f64(quality.iter().map(|q| q.shape).collect());
+    io::write_vtu_with_lines(
         path,
         &mesh.points,
         &mesh.triangles,
+        &mesh.hard_edges,
         &[
             ("tri", DataArray::I32(&tri)),
             ("v", DataArray::F64(&v)),
@@ -158,6 +181,8 @@ fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) ->
         ],
         &[
             ("control_tri", DataArray::I32(&chart)),
+            ("face", DataArray::I32(&face)),
+            ("edge", DataArray::I32(&edge)),
             ("min_angle", DataArray::F64(&min_angle)),
             ("shape_quality", DataArray::F64(&shape)),
         ],

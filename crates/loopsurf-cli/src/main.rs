@@ -9,6 +9,7 @@ mod cmd_interpolate;
 mod cmd_mesh;
 mod cmd_refine;
 mod cmd_snap;
+mod cmd_topology;
 mod input;
 mod queries;
 
@@ -33,7 +34,8 @@ enum Command {
     Refine(cmd_refine::Args),
     /// Adaptive Loop subdivision by conical angle (seed 001) or distance to the limit surface; conforming.
     Adapt(cmd_adapt::Args),
-    /// Exact evaluation: reads `tri v w` lines on stdin, writes X Xv Xw Xvv Xvw Xww (18 numbers) per line.
+    /// Exact evaluation: reads `tri v w` lines on stdin, writes X Xv Xw Xvv Xvw Xww (18 numbers) per line;
+    /// with --edge, `edge t` lines and X X' X'' (9 numbers) of that model edge (curve).
     Eval(cmd_eval::Args),
     /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
     Interpolate(cmd_interpolate::Args),
@@ -41,6 +43,8 @@ enum Command {
     Mesh(cmd_mesh::Args),
     /// Closest points: reads `x y z` lines on stdin, writes `tri v w x y z distance` per line.
     Snap(cmd_snap::Args),
+    /// The model of the hard features: faces, edges (curves) with their corners and control-vertex chains.
+    Topology(cmd_topology::Args),
 }
 
 /// Runs `write` against a buffered, locked stdout. A reader that stops
@@ -92,6 +96,7 @@ fn main() -> ExitCode {
         Command::Interpolate(args) => cmd_interpolate::run(args),
         Command::Snap(args) => cmd_snap::run(args),
         Command::Mesh(args) => cmd_mesh::run(args),
+        Command::Topology(args) => cmd_topology::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

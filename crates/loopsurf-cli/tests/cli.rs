@@ -604,5 +604,261 @@ fn repairs_are_asked_for_and_reported() {
         );
         assert!(text(&out.stdout).contains("Euler characteristic: 2"));
     }
-    assert_clean_failure(&loopsurf(&["info", "--weld", "0.5", file]), "weld distance 0.5");
+    assert_clean_failure(
+        &loopsurf(&["info", "--weld", "0.5", file]),
+        "weld distance 0.5",
+    );
+}
+
+/// The values of the named array of a .vtu file, as text.
+fn vtu_array(xml: &str, name: &str) -> Vec<String> {
+    let start = xml
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("the .vtu lacks {name}"));
+    let body = &xml[start..];
+    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+    body.split_whitespace().map(str::to_string).collect()
+}
+
+fn example_surface(name: &str, angle: Option<f64>) -> loopsurf::Surface {
+    let ex = loopsurf::examples::by_name(name).unwrap();
+    let mut net = loopsurf::ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+    if let Some(a) = angle {
+        net.tag_by_angle(a).unwrap();
+    }
+    loopsurf::Surface::new(&net).unwrap()
+}
+
+/// `loopsurf topology` on the cube: 6 faces, 12 edges between 8 corners,
+/// each edge's chain the library's (3 control edges along each cube edge
+/// of the 3 × 3 grid), one loop per face; the .vtu labels the control
+/// triangles with faces, the hard edges (line cells) with edges, and the
+/// corner vertices with corners.
+#[test]
+fn topology_of_the_cube() {
+    let vtu = scratch("cube-topology.vtu");
+    let out = loopsurf(&[
+        "topology",
+        "--example",
+        "cube",
+        "--hard-angle",
+        "30",
+        "-o",
+        vtu.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines[0], "faces 6 edges 12 corners 8");
+    assert_eq!(lines.len(), 1 + 12 + 6, "{stdout}");
+    let surface = example_surface("cube", Some(30.0));
+    let model = surface.model();
+    for (id, line) in lines[1..13].iter().enumerate() {
+        let f: Vec<&str> = line.split(' ').collect();
+        assert_eq!(&f[..2], ["edge", &id.to_string()[..]], "{line}");
+        assert_eq!(f[2], "corners", "{line}");
+        let corners: Vec<i64> = f[3..5].iter().map(|x| x.parse().unwrap()).collect();
+        assert!(corners.iter().all(|&c| (0..8).contains(&c)), "{line}");
+        assert_eq!(f[5], "chain", "{line}");
+        let chain: Vec<u32> = f[6..].iter().map(|x| x.parse().unwrap()).collect();
+        let curve = &model.curves()[id];
+        assert_eq!(chain, curve.chain, "{line}");
+        assert_eq!(chain.len(), 4, "{line}");
+        // The chain runs from its first corner's vertex to its second's.
+        assert_eq!(model.corners()[corners[0] as usize], chain[0], "{line}");
+        assert_eq!(model.corners()[corners[1] as usize], chain[3], "{line}");
+    }
+    for (id, line) in lines[13..].iter().enumerate() {
+        assert_eq!(*line, format!("face {id} triangles 18 loops 1"));
+    }
+    let xml = std::fs::read_to_string(&vtu).unwrap();
+    assert!(
+        xml.contains("NumberOfPoints=\"56\" NumberOfCells=\"144\""),
+        "108 triangles and 36 hard edges"
+    );
+    let types = vtu_array(&xml, "types");
+    assert!(types[..108].iter().all(|t| t == "5") && types[108..].iter().all(|t| t == "3"));
+    let offsets = vtu_array(&xml, "offsets");
+    assert_eq!(offsets.last().unwrap(), &(3 * 108 + 2 * 36).to_string());
+    let face: Vec<i32> = vtu_array(&xml, "face")
+        .iter()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let edge: Vec<i32> = vtu_array(&xml, "edge")
+        .iter()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let corner: Vec<i32> = vtu_array(&xml, "corner")
+        .iter()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    for t in 0..108 {
+        assert_eq!(face[t], model.face_of_triangle()[t] as i32);
+        assert_eq!(edge[t], -1);
+    }
+    let connectivity: Vec<u32> = vtu_array(&xml, "connectivity")
+        .iter()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let topo = surface.net().topology();
+    for l in 0..36 {
+        assert_eq!(face[108 + l], -1);
+        let (a, b) = (
+            connectivity[3 * 108 + 2 * l],
+            connectivity[3 * 108 + 2 * l + 1],
+        );
+        let e = topo.find_edge(a, b).expect("a control edge");
+        assert_eq!(Some(edge[108 + l] as u32), model.curve_of_edge(e));
+    }
+    assert_eq!(corner.iter().filter(|&&c| c >= 0).count(), 8);
+    for (id, &v) in model.corners().iter().enumerate() {
+        assert_eq!(corner[v as usize], id as i32);
+    }
+    // Anything but a .vtu is refused before any work.
+    assert_clean_failure(
+        &loopsurf(&["topology", "--example", "cube", "-o", "x.obj"]),
+        "x.obj",
+    );
+}
+
+/// The open disk's boundary is one closed edge: no corner, its chain
+/// closing on its first vertex.
+#[test]
+fn topology_of_the_open_disk_is_one_closed_edge() {
+    let out = loopsurf(&["topology", "--example", "open-disk"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines[0], "faces 1 edges 1 corners 0", "{stdout}");
+    assert!(
+        lines[1].starts_with("edge 0 corners -1 -1 chain "),
+        "{stdout}"
+    );
+    let chain: Vec<&str> = lines[1].split(' ').skip(6).collect();
+    assert!(chain.len() > 3);
+    assert_eq!(chain[0], *chain.last().unwrap());
+    assert_eq!(lines[2], "face 0 triangles 54 loops 1");
+    assert_eq!(lines.len(), 3);
+}
+
+/// `eval --edge`: 9 numbers per `edge t` line, bit for bit the library's
+/// curve evaluation; a bad line stops the run naming its number.
+#[test]
+fn eval_edge_reads_back_bit_exact() {
+    let queries: Vec<(usize, f64)> = vec![
+        (0, 0.0),
+        (0, 1.0 / 3.0),
+        (3, 2.75),
+        (11, 3.0),
+        (5, 1.0),
+        (7, 0.1),
+    ];
+    let stdin: String = queries
+        .iter()
+        .map(|(c, t)| format!("{c} {t:e}  # edge {c}\n\n"))
+        .collect();
+    let out = loopsurf_with_stdin(
+        &["eval", "--example", "cube", "--hard-angle", "30", "--edge"],
+        &stdin,
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let surface = example_surface("cube", Some(30.0));
+    let lines: Vec<String> = text(&out.stdout).lines().map(String::from).collect();
+    assert_eq!(lines.len(), queries.len());
+    for (line, &(c, t)) in lines.iter().zip(&queries) {
+        let numbers: Vec<f64> = line
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let record = surface.curve_eval(c, t).unwrap().record();
+        assert_eq!(numbers.len(), 9);
+        for (a, b) in numbers.iter().zip(record) {
+            assert_eq!(a.to_bits(), b.to_bits(), "edge {c} t {t}");
+        }
+    }
+    // The closed loop of the open disk, around to its end.
+    let disk = example_surface("open-disk", None);
+    let n = disk.model().curves()[0].len() as f64;
+    let out = loopsurf_with_stdin(
+        &["eval", "--example", "open-disk", "--edge"],
+        &format!("0 {n}\n0 0.5\n"),
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let first: Vec<f64> = text(&out.stdout)
+        .lines()
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let record = disk.curve_eval(0, n).unwrap().record();
+    assert!(first
+        .iter()
+        .zip(record)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+
+    let edge = |stdin: &str| {
+        loopsurf_with_stdin(
+            &["eval", "--example", "cube", "--hard-angle", "30", "--edge"],
+            stdin,
+        )
+    };
+    assert_clean_failure(&edge("0 0.5\n0 x\n"), "line 2");
+    assert_clean_failure(&edge("0 0.5\n\n0 1 2\n"), "line 3");
+    assert_clean_failure(&edge("# fine\n0 7\n"), "line 2");
+    assert_clean_failure(&edge("12 0\n"), "line 1");
+    assert_clean_failure(&edge("0.5 0\n"), "line 1");
+    assert_clean_failure(&edge("0 nan\n"), "line 1");
+}
+
+/// `loopsurf mesh` labels its .vtu: per triangle the model face of its
+/// chart, then one line cell per hard output edge with its model edge.
+#[test]
+fn mesh_vtu_carries_faces_and_edges() {
+    let vtu = scratch("cube-mesh-labels.vtu");
+    let out = loopsurf(&[
+        "mesh",
+        "--example",
+        "cube",
+        "--hard-angle",
+        "30",
+        "--uniform",
+        "2",
+        "--no-verify",
+        "-o",
+        vtu.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let surface = example_surface("cube", Some(30.0));
+    let mesh = loopsurf::Mesher::new(&surface)
+        .density(loopsurf::Density::Uniform(2))
+        .run()
+        .unwrap();
+    let (nt, nl) = (mesh.triangles.len(), mesh.hard_edges.len());
+    assert_eq!((nt, nl), (108 * 4, 36 * 2));
+    let xml = std::fs::read_to_string(&vtu).unwrap();
+    assert!(xml.contains(&format!("NumberOfCells=\"{}\"", nt + nl)));
+    let ints = |name: &str| -> Vec<i32> {
+        vtu_array(&xml, name)
+            .iter()
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let (face, edge, chart) = (ints("face"), ints("edge"), ints("control_tri"));
+    let model = surface.model();
+    for t in 0..nt {
+        assert_eq!(face[t], model.face_of_triangle()[chart[t] as usize] as i32);
+        assert_eq!(face[t], mesh.faces[t] as i32);
+        assert_eq!(edge[t], -1);
+    }
+    for l in 0..nl {
+        assert_eq!((face[nt + l], chart[nt + l]), (-1, -1));
+        assert_eq!(edge[nt + l], mesh.hard_edge_curves[l] as i32);
+    }
+    let angles = vtu_array(&xml, "min_angle");
+    assert!(angles[nt..].iter().all(|a| a == "-1"));
+    assert_eq!(
+        vtu_array(&xml, "types")[nt..],
+        vec!["3".to_string(); nl][..]
+    );
 }

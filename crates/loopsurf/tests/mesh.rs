@@ -373,3 +373,128 @@ fn crease_and_corner_nets_stay_within_a_sane_count() {
         mesh.triangles.len()
     );
 }
+
+/// Whether output vertex `v` lies on the control edge x-y: its only
+/// nonzero weights are at x or y (a vertex at a control vertex is stored in
+/// any triangle of its fan).
+fn lies_on(net: &ControlNet, mesh: &SurfaceMesh, v: u32, x: u32, y: u32) -> bool {
+    let p = mesh.params[v as usize];
+    let tri = net.triangles()[p.tri as usize];
+    let weights = [1.0 - p.v - p.w, p.v, p.w];
+    (0..3).all(|k| tri[k] == x || tri[k] == y || weights[k].abs() < 1e-14)
+}
+
+/// The model labels of a mesh: every triangle carries the face of its
+/// chart; every hard output edge carries the curve of a control edge both
+/// its ends lie on; `curve_edges` finds the same edges from the vertices'
+/// parameters alone, oriented and ordered along their curves, with curve
+/// parameters at which the curve is the vertex.
+fn check_labels(net: &ControlNet, surface: &Surface, mesh: &SurfaceMesh, what: &str) {
+    let model = surface.model();
+    assert_eq!(mesh.faces.len(), mesh.triangles.len(), "{what}");
+    for (t, &f) in mesh.faces.iter().enumerate() {
+        assert_eq!(
+            f,
+            model.face_of_triangle()[mesh.charts[t] as usize],
+            "{what}: triangle {t}"
+        );
+    }
+    assert_eq!(
+        loopsurf::mesh::face_labels(model, &mesh.charts).unwrap(),
+        mesh.faces,
+        "{what}"
+    );
+    assert_eq!(mesh.hard_edge_curves.len(), mesh.hard_edges.len(), "{what}");
+    let mut labelled = HashMap::new();
+    for (&[a, b], &c) in mesh.hard_edges.iter().zip(&mesh.hard_edge_curves) {
+        let curve = &model.curves()[c as usize];
+        let on_curve = curve
+            .chain
+            .windows(2)
+            .any(|w| lies_on(net, mesh, a, w[0], w[1]) && lies_on(net, mesh, b, w[0], w[1]));
+        assert!(on_curve, "{what}: hard edge {a}-{b} off curve {c}");
+        labelled.insert((a.min(b), a.max(b)), c);
+    }
+    let found = mesh.curve_edges(surface).unwrap();
+    assert_eq!(found.pairs.len(), mesh.hard_edges.len(), "{what}");
+    let tol = 1e-11 * mesh.diagonal;
+    for (i, (&[a, b], &c)) in found.pairs.iter().zip(&found.curves).enumerate() {
+        assert_eq!(
+            labelled.get(&(a.min(b), a.max(b))),
+            Some(&c),
+            "{what}: {a}-{b}"
+        );
+        let [ta, tb] = found.params[i];
+        assert!(ta < tb, "{what}: {a}-{b} runs against its curve");
+        for (v, t) in [(a, ta), (b, tb)] {
+            let x = surface.curve_eval(c as usize, t).unwrap().x;
+            assert!(
+                x.distance(mesh.points[v as usize]) <= tol,
+                "{what}: vertex {v} is not curve {c} at t = {t}"
+            );
+        }
+        // Ordered along the curve: the next edge of the same curve starts
+        // where this one ends.
+        if i + 1 < found.pairs.len() && found.curves[i + 1] == c {
+            assert_eq!(found.pairs[i + 1][0], b, "{what}: curve {c} breaks at {b}");
+            assert_eq!(found.params[i + 1][0], tb, "{what}");
+        }
+    }
+    // Every curve is covered from t = 0 to t = n.
+    for (c, curve) in model.curves().iter().enumerate() {
+        let mine: Vec<usize> = (0..found.curves.len())
+            .filter(|&i| found.curves[i] == c as u32)
+            .collect();
+        assert!(!mine.is_empty(), "{what}: curve {c} has no output edge");
+        assert_eq!(found.params[mine[0]][0], 0.0, "{what}: curve {c}");
+        assert_eq!(
+            found.params[*mine.last().unwrap()][1],
+            curve.len() as f64,
+            "{what}: curve {c}"
+        );
+    }
+}
+
+#[test]
+fn meshes_carry_faces_and_curves_of_the_model() {
+    let mut cases: Vec<(String, ControlNet)> = [
+        ("cube", Some(30.0)),
+        ("open-disk", None),
+        ("viking", Some(30.0)),
+        ("tetra", Some(30.0)),
+        ("torus", None),
+    ]
+    .into_iter()
+    .map(|(name, angle)| (name.to_string(), example(name, angle)))
+    .collect();
+    if let Some(net) = cgal("fandisk.off", Some(30.0)) {
+        cases.push(("fandisk 30°".into(), net));
+    }
+    for (name, net) in &cases {
+        let surface = Surface::new(net).unwrap();
+        for (density, adapt) in [
+            (Density::Uniform(1), false),
+            (Density::Uniform(3), false),
+            (Density::FromTolerance, true),
+        ] {
+            let mesh = Mesher::new(&surface)
+                .density(density)
+                .adapt_curvature(adapt)
+                .run()
+                .unwrap();
+            check_labels(net, &surface, &mesh, &format!("{name} {density:?}"));
+        }
+    }
+    // Hostile inputs to the free function are errors naming the element.
+    let net = example("cube", Some(30.0));
+    let surface = Surface::new(&net).unwrap();
+    let p = |tri, v, w| loopsurf::SurfacePoint { tri, v, w };
+    let err = loopsurf::mesh::curve_edges(&surface, &[p(1_000_000, 0.0, 0.0)], &[]).unwrap_err();
+    assert!(err.to_string().contains("vertex 0"), "{err}");
+    let err = loopsurf::mesh::curve_edges(&surface, &[p(0, 0.7, 0.7)], &[]).unwrap_err();
+    assert!(matches!(err, loopsurf::Error::BadParameter { .. }), "{err}");
+    let err = loopsurf::mesh::curve_edges(&surface, &[p(0, 0.0, 0.0)], &[[0, 0, 1]]).unwrap_err();
+    assert!(err.to_string().contains("triangle 0"), "{err}");
+    let err = loopsurf::mesh::face_labels(surface.model(), &[0, 1000]).unwrap_err();
+    assert!(err.to_string().contains("chart 1000"), "{err}");
+}

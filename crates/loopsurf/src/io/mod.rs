@@ -32,7 +32,7 @@ pub use off::{read_off, write_off};
 pub use ply::{read_ply, write_ply};
 pub use polygon::Polygon;
 pub use stl::{read_stl, write_stl};
-pub use vtu::{write_vtu, DataArray};
+pub use vtu::{write_vtu, write_vtu_with_lines, DataArray};
 
 /// What a reader found in a file, before any validation.
 #[derive(Debug, Clone, Default)]

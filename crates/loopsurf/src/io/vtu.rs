@@ -3,7 +3,11 @@
 //! (curvature, error fields, component IDs).
 //!
 //! Hand-written because the subset is tiny: Points as Float64 triples,
-//! Cells as Int64 connectivity and offsets with UInt8 type 5 (VTK_TRIANGLE).
+//! Cells as Int64 connectivity and offsets with UInt8 type 5 (VTK_TRIANGLE)
+//! and, after the triangles, optionally type 3 (VTK_LINE) for edges such
+//! as the hard ones: one piece of mixed cells, which ParaView shows
+//! together and splits with "Extract Cells By Type" or a threshold on a
+//! cell array.
 //! VTK's ASCII reader cannot parse `nan` or `inf`, so non-finite values are
 //! refused instead of producing a file ParaView chokes on.
 
@@ -53,7 +57,29 @@ pub fn write_vtu(
     point_data: &[(&str, DataArray)],
     cell_data: &[(&str, DataArray)],
 ) -> Result<()> {
+    write_vtu_with_lines(path, points, tris, &[], point_data, cell_data)
+}
+
+/// [`write_vtu`] with line cells (VTK_LINE) after the triangles, e.g. the
+/// hard edges. Every cell array has one entry per cell, triangles first:
+/// `tris.len() + lines.len()` of them.
+pub fn write_vtu_with_lines(
+    path: &Path,
+    points: &[DVec3],
+    tris: &[[u32; 3]],
+    lines: &[[u32; 2]],
+    point_data: &[(&str, DataArray)],
+    cell_data: &[(&str, DataArray)],
+) -> Result<()> {
     super::check_tris(points, tris)?;
+    for (l, line) in lines.iter().enumerate() {
+        if let Some(&i) = line.iter().find(|&&i| i as usize >= points.len()) {
+            return Err(Error::InvalidArgument(format!(
+                "line {l} {line:?} refers to vertex {i}, but there are only {} points",
+                points.len()
+            )));
+        }
+    }
     if let Some(i) = points.iter().position(|p| !p.is_finite()) {
         return Err(Error::InvalidArgument(format!(
             "point {i} {:?} is not finite; VTK cannot read it",
@@ -62,7 +88,7 @@ pub fn write_vtu(
     }
     for (kind, arrays, n) in [
         ("point", point_data, points.len()),
-        ("cell", cell_data, tris.len()),
+        ("cell", cell_data, tris.len() + lines.len()),
     ] {
         for (name, array) in arrays {
             if array.len() != n {
@@ -79,7 +105,8 @@ pub fn write_vtu(
         }
     }
     let mut w = super::create(path)?;
-    write_body(&mut w, points, tris, point_data, cell_data).map_err(super::io_error(path))?;
+    write_body(&mut w, points, tris, lines, point_data, cell_data)
+        .map_err(super::io_error(path))?;
     super::finish(w, path)
 }
 
@@ -87,6 +114,7 @@ fn write_body(
     w: &mut impl Write,
     points: &[DVec3],
     tris: &[[u32; 3]],
+    lines: &[[u32; 2]],
     point_data: &[(&str, DataArray)],
     cell_data: &[(&str, DataArray)],
 ) -> std::io::Result<()> {
@@ -100,7 +128,7 @@ fn write_body(
         w,
         "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
         points.len(),
-        tris.len()
+        tris.len() + lines.len()
     )?;
     for (tag, arrays) in [("PointData", point_data), ("CellData", cell_data)] {
         writeln!(w, "      <{tag}>")?;
@@ -120,6 +148,9 @@ fn write_body(
     for t in tris {
         writeln!(w, "          {} {} {}", t[0], t[1], t[2])?;
     }
+    for l in lines {
+        writeln!(w, "          {} {}", l[0], l[1])?;
+    }
     writeln!(w, "        </DataArray>")?;
     writeln!(
         w,
@@ -128,6 +159,10 @@ fn write_body(
     for k in 1..=tris.len() as u64 {
         writeln!(w, "          {}", 3 * k)?;
     }
+    let end = 3 * tris.len() as u64;
+    for k in 1..=lines.len() as u64 {
+        writeln!(w, "          {}", end + 2 * k)?;
+    }
     writeln!(w, "        </DataArray>")?;
     writeln!(
         w,
@@ -135,6 +170,9 @@ fn write_body(
     )?;
     for _ in tris {
         writeln!(w, "          5")?;
+    }
+    for _ in lines {
+        writeln!(w, "          3")?;
     }
     writeln!(w, "        </DataArray>")?;
     writeln!(w, "      </Cells>")?;
@@ -192,4 +230,59 @@ fn xml_escape(s: &str) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Line cells follow the triangles: connectivity, offsets and types
+    /// continue, and cell arrays cover both; bad lines and short arrays are
+    /// refused.
+    #[test]
+    fn triangles_then_lines() {
+        let dir = std::env::temp_dir().join(format!("loopsurf-vtu-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("lines.vtu");
+        let points = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE];
+        let tris = [[0, 1, 2], [1, 3, 2]];
+        let lines = [[0, 1], [1, 3]];
+        let ids = [0, 0, 4, 7];
+        write_vtu_with_lines(
+            &path,
+            &points,
+            &tris,
+            &lines,
+            &[],
+            &[("edge", DataArray::I32(&ids))],
+        )
+        .unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains("NumberOfPoints=\"4\" NumberOfCells=\"4\""));
+        let array = |name: &str| -> Vec<String> {
+            let body = &text[text.find(&format!("Name=\"{name}\"")).unwrap()..];
+            let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+            body.split_whitespace().map(str::to_string).collect()
+        };
+        assert_eq!(
+            array("connectivity"),
+            ["0", "1", "2", "1", "3", "2", "0", "1", "1", "3"]
+        );
+        assert_eq!(array("offsets"), ["3", "6", "8", "10"]);
+        assert_eq!(array("types"), ["5", "5", "3", "3"]);
+        assert_eq!(array("edge"), ["0", "0", "4", "7"]);
+        let err = write_vtu_with_lines(&path, &points, &tris, &[[0, 4]], &[], &[]).unwrap_err();
+        assert!(err.to_string().contains("line 0"), "{err}");
+        let err = write_vtu_with_lines(
+            &path,
+            &points,
+            &tris,
+            &lines,
+            &[],
+            &[("edge", DataArray::I32(&ids[..2]))],
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("2 values for 4 cells"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

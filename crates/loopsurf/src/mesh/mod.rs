@@ -19,12 +19,19 @@
 //! parameters (an upper bound of the distance to the surface there, sharpened
 //! by one projection step where it matters). Where it exceeds the
 //! tolerance, the control triangle or edge is cut finer and rebuilt.
+//!
+//! The output carries the model's labels (DESIGN.md, "The model"): the
+//! face of every triangle and the curve of every hard output edge; see
+//! [`labels`] for the same labels of any mesh whose vertices carry their
+//! surface points.
 
 mod density;
+pub mod labels;
 mod pattern;
 mod quality;
 
 pub use crate::geometry::min_angle;
+pub use labels::{curve_edges, face_labels, CurveEdges};
 pub use quality::{MeshQuality, TriangleQuality};
 
 use crate::error::{Error, Result};
@@ -82,8 +89,16 @@ pub struct SurfaceMesh {
     pub params: Vec<SurfacePoint>,
     /// Per triangle: the control triangle whose parameter domain holds it.
     pub charts: Vec<u32>,
-    /// The output edges along the net's hard edges, as vertex pairs.
+    /// Per triangle: its model face, the face of its chart
+    /// (`model().face_of_triangle()[charts[t]]`).
+    pub faces: Vec<u32>,
+    /// The output edges along the net's hard edges, as vertex pairs: each
+    /// hard control edge's in turn (in edge order), from its first end
+    /// vertex to its second.
     pub hard_edges: Vec<[u32; 2]>,
+    /// Per hard output edge (parallel to `hard_edges`): its model curve,
+    /// the curve of the control edge it lies on.
+    pub hard_edge_curves: Vec<u32>,
     /// Largest measured chord error (model units): flat triangle to surface
     /// at the same parameters, over all centroids and edge midpoints. `None`
     /// when no tolerance was set: there is nothing to enforce then, and
@@ -762,13 +777,19 @@ fn assemble(
                 .collect()
         })
         .collect();
-    let charts = per_chart
+    let charts: Vec<u32> = per_chart
         .iter()
         .enumerate()
         .flat_map(|(t, v)| std::iter::repeat(t as u32).take(v.len()))
         .collect();
     let triangles = per_chart.into_iter().flatten().collect();
+    let model = surface.model();
+    let faces = charts
+        .iter()
+        .map(|&c| model.face_of_triangle()[c as usize])
+        .collect();
     let mut hard_edges = Vec::new();
+    let mut hard_edge_curves = Vec::new();
     for (e, &[a, b]) in topo.edges().iter().enumerate() {
         if net.features().is_hard_edge(e) {
             let n = edge_cuts[e].points.len() as u32;
@@ -777,6 +798,8 @@ fn assemble(
                 .chain(std::iter::once(corner_index[b as usize]))
                 .collect();
             hard_edges.extend(chain.windows(2).map(|w| [w[0], w[1]]));
+            let curve = model.curve_of_edge(e).expect("a hard edge is on a curve");
+            hard_edge_curves.extend(std::iter::repeat(curve).take(n as usize + 1));
         }
     }
     let deviation = measured.then(|| {
@@ -791,7 +814,9 @@ fn assemble(
         triangles,
         params,
         charts,
+        faces,
         hard_edges,
+        hard_edge_curves,
         deviation,
         diagonal,
     }
@@ -809,6 +834,13 @@ impl SurfaceMesh {
             let (v, w) = reparameterize(net, p, chart).unwrap_or((p.v, p.w));
             SurfacePoint { tri: chart, v, w }
         })
+    }
+
+    /// The hard output edges oriented and ordered along their curves, with
+    /// the curve parameters of their ends ([`labels::curve_edges`]): the
+    /// same edges as `hard_edges` with the same curves.
+    pub fn curve_edges(&self, surface: &Surface) -> Result<CurveEdges> {
+        labels::curve_edges(surface, &self.params, &self.triangles)
     }
 }
 
