@@ -225,6 +225,26 @@ module loopsurf
             ! variable receives the array.
             type(c_ptr), value :: tri_chart, tri_vw
         end function
+        integer(c_int) function ls_mesh_face_labels(surface, ntris, tri_chart, tri_face) &
+                bind(C, name="ls_mesh_face_labels")
+            import :: c_int, c_size_t, c_int32_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), value :: ntris
+            integer(c_int32_t), intent(in) :: tri_chart(*)
+            integer(c_int32_t), intent(out) :: tri_face(*)
+        end function
+        integer(c_int) function ls_mesh_hard_edges(surface, nverts, vertex_tri, vertex_vw, ntris, tris, &
+                nhard, pairs, curves, curve_t) bind(C, name="ls_mesh_hard_edges")
+            import :: c_int, c_size_t, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), value :: nverts, ntris
+            integer(c_int32_t), intent(in) :: vertex_tri(*), tris(*)
+            real(c_double), intent(in) :: vertex_vw(*)
+            integer(c_size_t), intent(out) :: nhard
+            type(c_ptr), intent(out) :: pairs, curves
+            ! Optional: c_null_ptr skips it; c_loc of a type(c_ptr) receives it.
+            type(c_ptr), value :: curve_t
+        end function
         integer(c_int) function ls_adapt(surface, angle, tolerance, levels, to_limit, &
                 nverts, xyz, ntris, tris, vertex_tri, vertex_vw) bind(C, name="ls_adapt")
             import :: c_int, c_double, c_size_t, c_ptr

@@ -83,6 +83,23 @@ program test_loopsurf
     call check(ls_mesh(surf, 3_c_int, 0d0, 0d0, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw, &
         c_null_ptr, c_null_ptr) == LS_OK, "mesh")
     call check(nt == 72 .and. nv == 38, "mesh counts")
+    ! The tagged edge (1, 3) is the model's one curve: 3 mesh edges lie on it.
+    block
+        integer(c_int32_t), pointer :: ftri(:), ftris(:), fcurves(:)
+        real(c_double), pointer :: fvw(:)
+        type(c_ptr) :: hpairs, hcurves
+        integer(c_size_t) :: nhard
+        call c_f_pointer(mtri, ftri, [nv])
+        call c_f_pointer(mvw, fvw, [2 * nv])
+        call c_f_pointer(rtris, ftris, [3 * nt])
+        call check(ls_mesh_hard_edges(surf, nv, ftri, fvw, nt, ftris, nhard, hpairs, hcurves, &
+            c_null_ptr) == LS_OK, "mesh hard edges")
+        call c_f_pointer(hcurves, fcurves, [nhard])
+        call check(nhard == 3, "three mesh edges on the hard edge")
+        call check(all(fcurves == 0), "all on curve 0")
+        call ls_free_array(hpairs)
+        call ls_free_array(hcurves)
+    end block
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
     call ls_free_array(mtri)
