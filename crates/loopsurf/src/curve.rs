@@ -28,6 +28,8 @@ use crate::model::Curve;
 use crate::surface::Surface;
 use crate::topology::NONE;
 use glam::{DVec2, DVec3};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 /// Position and first and second derivatives with respect to t.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -265,29 +267,71 @@ impl Surface {
         let c = self.curve(curve)?;
         let (a, b) = (self.curve_parameter(c, t0)?, self.curve_parameter(c, t1)?);
         let (lo, hi, sign) = if a <= b { (a, b, 1.0) } else { (b, a, -1.0) };
+        let n = c.len() as f64;
+        let tip = |t: f64| {
+            (t == 0.0 && self.is_dart_tip(c, 0)) || (t == n && self.is_dart_tip(c, c.len()))
+        };
         let mut total = 0.0;
         let mut k = lo.floor();
         while k < hi {
             let (x, y) = (lo.max(k), hi.min(k + 1.0));
             if y > x {
-                total += self.segment_length(curve, x, y, 0)?;
+                total += if tip(x) {
+                    self.length_to_tip(curve, x, y)?
+                } else if tip(y) {
+                    self.length_to_tip(curve, y, x)?
+                } else {
+                    self.segment_length(curve, x, y, self.length_floor(), 0)?
+                };
             }
             k += 1.0;
         }
         Ok(sign * total)
     }
 
+    /// The length from a dart tip to `other` in the same segment. |X′|
+    /// behaves like a power of the distance to the tip there, which
+    /// adaptive quadrature would chase for forty halvings: instead the
+    /// interval is cut into halves towards the tip, each smooth on its own
+    /// scale, until the rest (bounded by its chord's multiple, taken as its
+    /// chord) is below round-off of the sum.
+    fn length_to_tip(&self, curve: usize, tip: f64, other: f64) -> Result<f64> {
+        let x_tip = self.curve_eval(curve, tip)?.x;
+        let mut total = 0.0;
+        let mut far = other;
+        for _ in 0..200 {
+            let near = tip + 0.5 * (far - tip);
+            let (a, b) = if near < far { (near, far) } else { (far, near) };
+            // Each piece only needs to be good relative to the sum so far.
+            let floor = self.length_floor().max(1e-15 * total);
+            total += self.segment_length(curve, a, b, floor, 0)?;
+            far = near;
+            let rest = (self.curve_eval(curve, far)?.x - x_tip).length();
+            if rest <= 1e-14 * total {
+                return Ok(total + rest);
+            }
+        }
+        Ok(total)
+    }
+
     /// ∫ |X′| over [a, b] inside one unit segment, halving until the halves
-    /// agree with the whole.
-    fn segment_length(&self, curve: usize, a: f64, b: f64, depth: u32) -> Result<f64> {
+    /// agree with the whole to 1e-13 relative or to `floor` absolute (the
+    /// round-off of positions, below which pieces near a dart tip never
+    /// agree better).
+    fn segment_length(&self, curve: usize, a: f64, b: f64, floor: f64, depth: u32) -> Result<f64> {
         let whole = self.gauss(curve, a, b)?;
         let m = 0.5 * (a + b);
         let halves = self.gauss(curve, a, m)? + self.gauss(curve, m, b)?;
-        if (whole - halves).abs() <= 1e-13 * halves.abs() || depth >= 40 {
+        if (whole - halves).abs() <= (1e-13 * halves.abs()).max(floor) || depth >= 40 {
             return Ok(halves);
         }
-        Ok(self.segment_length(curve, a, m, depth + 1)?
-            + self.segment_length(curve, m, b, depth + 1)?)
+        Ok(self.segment_length(curve, a, m, 0.5 * floor, depth + 1)?
+            + self.segment_length(curve, m, b, 0.5 * floor, depth + 1)?)
+    }
+
+    /// The absolute round-off of lengths on this surface.
+    fn length_floor(&self) -> f64 {
+        1e-15 * self.net().bbox_diagonal()
     }
 
     fn gauss(&self, curve: usize, a: f64, b: f64) -> Result<f64> {
@@ -307,9 +351,10 @@ impl Surface {
     pub fn curve_param_at_length(&self, curve: usize, s: f64) -> Result<f64> {
         let c = self.curve(curve)?;
         let n = c.len();
+        let table = self.segment_lengths(curve)?;
         let mut cumulative = 0.0;
         for k in 0..n {
-            let seg = self.segment_length(curve, k as f64, k as f64 + 1.0, 0)?;
+            let seg = table[k];
             if s <= cumulative + seg || k + 1 == n {
                 let target = s - cumulative;
                 if !(target >= -1e-12 * seg && target <= seg * (1.0 + 1e-12)) || !s.is_finite() {
@@ -343,6 +388,21 @@ impl Surface {
             cumulative += seg;
         }
         unreachable!("a curve has at least one control edge")
+    }
+
+    /// The length of every unit segment of curve `curve`, computed on first
+    /// use and kept with the surface (placing many points on one curve
+    /// would otherwise integrate it again for each).
+    fn segment_lengths(&self, curve: usize) -> Result<&[f64]> {
+        let slots = self.curve_lengths_cache();
+        if let Some(table) = slots[curve].get() {
+            return Ok(table);
+        }
+        let n = self.curve(curve)?.len();
+        let table = (0..n)
+            .map(|k| self.curve_length(curve, k as f64, k as f64 + 1.0))
+            .collect::<Result<Vec<f64>>>()?;
+        Ok(slots[curve].get_or_init(|| table))
     }
 
     /// The surface points of curve parameter t: (face, triangle, v, w) on
@@ -506,25 +566,61 @@ impl Surface {
             }
             Ok(())
         };
-        // Pieces: (lower bound, segment, s0, s1, Bézier points).
-        let mut heap: Vec<(f64, usize, f64, f64, [DVec3; 4])> = Vec::new();
-        let mut closed_bound = f64::INFINITY;
+        // Pieces by lower bound, nearest first: a polynomial segment's
+        // sub-interval with its Bézier points, or a whole dart segment
+        // (bounded by its control hull, sampled when it can matter).
+        // Distances are non-negative, so their bits order like them.
+        let mut heap = BinaryHeap::new();
+        let mut pieces = Vec::new();
+        type Piece = (usize, f64, f64, Option<[DVec3; 4]>);
+        fn push(
+            heap: &mut BinaryHeap<Reverse<(u64, usize)>>,
+            pieces: &mut Vec<Piece>,
+            bound: f64,
+            piece: Piece,
+        ) {
+            pieces.push(piece);
+            heap.push(Reverse((bound.to_bits(), pieces.len() - 1)));
+        }
         for k in 0..c.len() {
             if self.near_dart(c, k) {
-                for i in 0..=16 {
-                    consider(k as f64 + i as f64 / 16.0, &mut best)?;
-                }
-                closed_bound = closed_bound.min(box_distance(p, &self.segment_support(c, k)));
-                continue;
+                let bound = box_distance(p, &self.segment_support(c, k));
+                push(&mut heap, &mut pieces, bound, (k, 0.0, 1.0, None));
+            } else {
+                let b = self.bezier_of_segment(c, k);
+                push(
+                    &mut heap,
+                    &mut pieces,
+                    box_distance(p, &b),
+                    (k, 0.0, 1.0, Some(b)),
+                );
             }
-            let b = self.bezier_of_segment(c, k);
-            heap.push((box_distance(p, &b), k, 0.0, 1.0, b));
-            consider(k as f64 + 0.5, &mut best)?;
         }
+        let mut closed_bound = f64::INFINITY;
         let mut splits = 0;
-        while let Some(i) = (0..heap.len()).min_by(|&i, &j| heap[i].0.total_cmp(&heap[j].0)) {
-            let (bound, k, s0, s1, b) = heap.swap_remove(i);
-            if bound >= best.distance - tol || splits >= 20_000 || s1 - s0 < 1e-15 {
+        while let Some(Reverse((bits, i))) = heap.pop() {
+            let bound = f64::from_bits(bits);
+            if bound >= best.distance - tol {
+                // The nearest remaining piece closes, and all after it.
+                closed_bound = closed_bound.min(bound);
+                break;
+            }
+            let (k, s0, s1, b) = pieces[i];
+            let Some(b) = b else {
+                // Sampled, then solved from the nearest sample only.
+                let mut nearest = (f64::INFINITY, k as f64);
+                for j in 0..=16 {
+                    let t = k as f64 + j as f64 / 16.0;
+                    let d = (self.curve_eval(curve, t)?.x - p).length();
+                    if d < nearest.0 {
+                        nearest = (d, t);
+                    }
+                }
+                consider(nearest.1, &mut best)?;
+                closed_bound = closed_bound.min(bound);
+                continue;
+            };
+            if splits >= 20_000 || s1 - s0 < 1e-15 {
                 closed_bound = closed_bound.min(bound);
                 continue;
             }
@@ -549,8 +645,18 @@ impl Surface {
             consider(k as f64 + 0.5 * (s0 + s1), &mut best)?;
             let (l, r) = split_bezier(&b);
             let m = 0.5 * (s0 + s1);
-            heap.push((box_distance(p, &l), k, s0, m, l));
-            heap.push((box_distance(p, &r), k, m, s1, r));
+            push(
+                &mut heap,
+                &mut pieces,
+                box_distance(p, &l),
+                (k, s0, m, Some(l)),
+            );
+            push(
+                &mut heap,
+                &mut pieces,
+                box_distance(p, &r),
+                (k, m, s1, Some(r)),
+            );
         }
         best.lower_bound = closed_bound.min(best.distance);
         Ok(best)
@@ -610,9 +716,10 @@ fn box_distance(p: DVec3, points: &[DVec3]) -> f64 {
     (lo - p).max(p - hi).max(DVec3::ZERO).length()
 }
 
-/// The minimum over s ∈ [0, 1] of |B(s) − p| when |B − p|² is convex
-/// there, proven by the Bernstein coefficients of its second derivative
-/// (a degree-6 polynomial's, all non-negative); None otherwise.
+/// Where |B − p|² is convex over s ∈ [0, 1] — proven by the Bernstein
+/// coefficients of its second derivative (a degree-6 polynomial's, all
+/// non-negative) — its minimiser s and a lower bound on |B − p| over the
+/// piece; None otherwise.
 fn convex_minimum(b: &[DVec3; 4], p: DVec3) -> Option<(f64, f64)> {
     let q = b.map(|x| x - p);
     // |B − p|² in Bernstein form of degree 6: c_k = Σ_{i+j=k} C(3,i) C(3,j)
@@ -632,27 +739,62 @@ fn convex_minimum(b: &[DVec3; 4], p: DVec3) -> Option<(f64, f64)> {
     if !convex {
         return None;
     }
-    let f = |s: f64| {
-        let mut v = c;
-        for n in (1..7).rev() {
-            for k in 0..n {
-                v[k] = (1.0 - s) * v[k] + s * v[k + 1];
-            }
-        }
-        v[0]
+    // The minimiser: the root of g = (B − p)·B′ (increasing, as f = |B − p|²
+    // is convex), by Newton safeguarded by bisection, all in geometric
+    // terms (no cancellation in f itself).
+    let at = |s: f64| {
+        let r = 1.0 - s;
+        let x =
+            r * r * r * b[0] + 3.0 * r * r * s * b[1] + 3.0 * r * s * s * b[2] + s * s * s * b[3];
+        let d1 =
+            3.0 * (r * r * (b[1] - b[0]) + 2.0 * r * s * (b[2] - b[1]) + s * s * (b[3] - b[2]));
+        let d2 = 6.0 * (r * (b[2] - 2.0 * b[1] + b[0]) + s * (b[3] - 2.0 * b[2] + b[1]));
+        (x - p, d1, d2)
     };
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..80 {
-        let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if f(x1) <= f(x2) {
-            hi = x2;
-        } else {
-            lo = x1;
+    let g = |s: f64| {
+        let (x, d1, _) = at(s);
+        x.dot(d1)
+    };
+    let s = if g(0.0) >= 0.0 {
+        0.0
+    } else if g(1.0) <= 0.0 {
+        1.0
+    } else {
+        let (mut lo, mut hi, mut s) = (0.0f64, 1.0f64, 0.5f64);
+        for _ in 0..100 {
+            let (x, d1, d2) = at(s);
+            let gs = x.dot(d1);
+            if gs < 0.0 {
+                lo = s;
+            } else {
+                hi = s;
+            }
+            let slope = d1.length_squared() + x.dot(d2);
+            let newton = s - gs / slope;
+            let next = if slope > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - s).abs() <= 1e-17 || hi - lo <= 1e-17 {
+                s = next;
+                break;
+            }
+            s = next;
         }
-    }
-    let s = 0.5 * (lo + hi);
-    Some((s, f(s).max(0.0).sqrt()))
+        s
+    };
+    // f is convex: above its tangent at s, whose lowest point on [0, 1]
+    // is at the end the slope falls towards (f′ = 2g).
+    let (x, d1, _) = at(s);
+    let slope = 2.0 * x.dot(d1);
+    let lower = x.length_squared()
+        - if slope >= 0.0 {
+            slope * s
+        } else {
+            -slope * (1.0 - s)
+        };
+    Some((s, lower.max(0.0).sqrt()))
 }
 
 /// De Casteljau at ½.
@@ -662,4 +804,23 @@ fn split_bezier(b: &[DVec3; 4]) -> ([DVec3; 4], [DVec3; 4]) {
     let (a2, b2) = (m(a1, b1), m(b1, c1));
     let mid = m(a2, b2);
     ([b[0], a1, a2, mid], [mid, b2, c1, b[3]])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn convex_minimum_of_a_straight_segment() {
+        let b = [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0].map(|x| DVec3::new(x, 0.0, 0.0));
+        for (p, s_expected, d) in [
+            (DVec3::new(0.25, 1.0, 0.0), 0.25, 1.0),
+            (DVec3::new(-1.0, 0.0, 0.0), 0.0, 1.0),
+            (DVec3::new(3.0, 4.0, 0.0), 1.0, 2f64.hypot(4.0)),
+        ] {
+            let (s, lower) = convex_minimum(&b, p).unwrap();
+            assert!((s - s_expected).abs() < 1e-15, "{p}: {s}");
+            assert!(lower <= d && lower > d - 1e-12, "{p}: {lower} vs {d}");
+        }
+    }
 }

@@ -27,6 +27,8 @@ pub struct Surface {
     derived: std::sync::OnceLock<Box<dyn Derived>>,
     /// Corners, curves and faces, traced on first use.
     model: std::sync::OnceLock<crate::model::Model>,
+    /// Per curve of the model, its segment lengths, integrated on first use.
+    curve_lengths: std::sync::OnceLock<Vec<std::sync::OnceLock<Vec<f64>>>>,
 }
 
 /// Data that a layer above the surface derives from it once and caches
@@ -153,6 +155,7 @@ impl Surface {
             displacement,
             derived: std::sync::OnceLock::new(),
             model: std::sync::OnceLock::new(),
+            curve_lengths: std::sync::OnceLock::new(),
         })
     }
 
@@ -190,9 +193,21 @@ impl Surface {
             .get_or_init(|| crate::model::Model::new(self.net.topology(), self.net.features()))
     }
 
+    /// One empty slot per model curve for its segment lengths.
+    pub(crate) fn curve_lengths_cache(&self) -> &[std::sync::OnceLock<Vec<f64>>] {
+        self.curve_lengths.get_or_init(|| {
+            (0..self.model().curves().len())
+                .map(|_| std::sync::OnceLock::new())
+                .collect()
+        })
+    }
+
     /// The displacement of vertex `v` (zero unless in displacement mode).
     pub(crate) fn displacement_of(&self, v: u32) -> DVec3 {
-        self.displacement.get(v as usize).copied().unwrap_or(DVec3::ZERO)
+        self.displacement
+            .get(v as usize)
+            .copied()
+            .unwrap_or(DVec3::ZERO)
     }
 
     /// Which surface this is.
@@ -348,7 +363,11 @@ impl Surface {
         // all the way down (high valences converge very slowly: 0.998 a
         // level at valence 80).
         let approaching = |n: &DVec3| {
-            let (a20, a40, a60) = (n.angle_between(n20), n.angle_between(n40), n.angle_between(n60));
+            let (a20, a40, a60) = (
+                n.angle_between(n20),
+                n.angle_between(n40),
+                n.angle_between(n60),
+            );
             a60 < 1e-2 || (a40 < a20 * (1.0 - 1e-6) && a60 < a40 * (1.0 - 1e-6))
         };
         if let Some(n) = masked.filter(approaching) {
