@@ -9,13 +9,15 @@
 //!    dirty triangulations);
 //! 3. [`topology`] (connectivity only) → [`features`] (hard edges and
 //!    vertex kinds) → [`net`] (positions, validation, the limit operator);
-//! 4. [`refine`] (uniform subdivision) and [`interpolate`] (solving for
+//! 4. [`model`] (corners, curves and faces of the hard features),
+//!    [`refine`] (uniform subdivision) and [`interpolate`] (solving for
 //!    control points whose limit passes through given points);
 //! 5. [`surface`] (exact evaluation at any (triangle, v, w), built on the
 //!    crate-private `eval`), with [`stream`] to ship a surface as bytes;
-//! 6. [`snap`] (closest points; its index is cached by the surface
-//!    through a trait, so the surface does not know it), then [`mesh`],
-//!    [`adapt`] and [`fairness`], which use everything below.
+//! 6. [`curve`] (the model's exact curves) and [`snap`] (closest points;
+//!    its index is cached by the surface through a trait, so the surface
+//!    does not know it), then [`mesh`], [`adapt`] and [`fairness`], which
+//!    use everything below.
 //!
 //! Built-in shapes live in [`examples`]; errors in [`error`].
 
