@@ -59,7 +59,7 @@ pub struct SpecialPatch {
 }
 
 /// A special corner's configuration, in canonical local numbering.
-#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
 pub struct Key {
     /// Local labels of p and q: around a boundary vertex the numbering
     /// starts at the boundary whatever p is, so the local nets of its
@@ -74,24 +74,6 @@ pub struct Key {
 #[derive(Default)]
 pub struct Cache {
     patches: HashMap<Key, std::sync::Arc<SpecialPatch>>,
-}
-
-/// The configuration of triangle (c, p, q) (counter-clockwise) of a net and
-/// the net vertices of its neighbourhood in the patch's order. Pure, so it
-/// runs in parallel; `labels` is scratch, one `NONE` entry per net vertex.
-pub fn configuration(
-    topo: &Topology,
-    features: &Features,
-    [c, p, q]: [u32; 3],
-    labels: &mut [u32],
-) -> (Key, Vec<u32>) {
-    // The local net reproduces the rings of c, p and q, so the
-    // neighbourhood is read off the global net, in the same order.
-    let neighbourhood = neighbourhood(topo, c, p, q);
-    (
-        Key::around(topo, features, [c, p, q], labels),
-        neighbourhood,
-    )
 }
 
 impl Cache {
@@ -112,8 +94,13 @@ impl Cache {
         corner: [u32; 3],
     ) -> (std::sync::Arc<SpecialPatch>, Vec<u32>) {
         let mut labels = vec![NONE; topo.num_vertices()];
-        let (key, neighbourhood) = configuration(topo, features, corner, &mut labels);
-        (self.get(key), neighbourhood)
+        let mut scratch = KeyScratch::default();
+        Key::around_into(topo, features, corner, &mut labels, &mut scratch);
+        let [c, p, q] = corner;
+        (
+            self.get(scratch.key().clone()),
+            neighbourhood(topo, c, p, q),
+        )
     }
 
     /// Number of distinct configurations built.
@@ -376,7 +363,15 @@ impl Cell {
 /// the rings of p and q, each ring counter-clockwise from a fixed neighbour
 /// (boundary rings as they are, from the boundary).
 pub(crate) fn neighbourhood(topo: &Topology, c: u32, p: u32, q: u32) -> Vec<u32> {
-    let mut out = vec![c];
+    let mut out = Vec::new();
+    neighbourhood_into(topo, c, p, q, &mut out);
+    out
+}
+
+/// [`neighbourhood`] into a reused buffer.
+pub(crate) fn neighbourhood_into(topo: &Topology, c: u32, p: u32, q: u32, out: &mut Vec<u32>) {
+    out.clear();
+    out.push(c);
     for (v, from) in [(c, p), (p, c), (q, c)] {
         for x in ring_from(topo, v, from) {
             if !out.contains(&x) {
@@ -384,18 +379,51 @@ pub(crate) fn neighbourhood(topo: &Topology, c: u32, p: u32, q: u32) -> Vec<u32>
             }
         }
     }
-    out
 }
 
-fn ring_from(topo: &Topology, v: u32, from: u32) -> Vec<u32> {
+/// The ring of v counter-clockwise from `from` (a boundary ring as it is).
+fn ring_from(topo: &Topology, v: u32, from: u32) -> impl Iterator<Item = u32> + '_ {
     let ring = topo.ring(v as usize);
-    if topo.is_boundary_vertex(v as usize) {
-        return ring.to_vec();
+    let k = if topo.is_boundary_vertex(v as usize) {
+        0
+    } else {
+        ring.iter().position(|&x| x == from).unwrap_or(0)
+    };
+    ring[k..].iter().chain(&ring[..k]).copied()
+}
+
+/// Scratch space and result of [`Key::around_into`]: the key's parts in
+/// reused buffers, so that looking a configuration up allocates nothing.
+#[derive(Default)]
+pub struct KeyScratch {
+    global: Vec<u32>,
+    fan: Vec<u32>,
+    key: Key,
+}
+
+impl KeyScratch {
+    /// The key last computed.
+    pub fn key(&self) -> &Key {
+        &self.key
     }
-    let k = ring.iter().position(|&x| x == from).unwrap_or(0);
-    (0..ring.len())
-        .map(|i| ring[(k + i) % ring.len()])
-        .collect()
+}
+
+impl Key {
+    /// A cheap hash of the key (FxHash-style), for per-thread tables.
+    pub fn fast_hash(&self) -> u64 {
+        let mut h = 0u64;
+        let mut add =
+            |x: u32| h = (h.rotate_left(5) ^ x as u64).wrapping_mul(0x517c_c1b7_2722_0a95);
+        add(self.corner[0]);
+        add(self.corner[1]);
+        add(self.tris.len() as u32);
+        self.tris.iter().flatten().for_each(|&x| add(x));
+        add(self.hard.len() as u32);
+        self.hard.iter().flatten().for_each(|&x| add(x));
+        add(self.tagged.len() as u32);
+        self.tagged.iter().for_each(|&x| add(x));
+        h
+    }
 }
 
 impl Key {
@@ -403,13 +431,16 @@ impl Key {
     /// from (c, p), with their hard edges and corner tags: everything the
     /// rules of c and its ring read, and all the patch (c, p, q) depends on.
     /// `labels` is scratch space, one entry per net vertex, all `NONE` on
-    /// entry and on return: labelling is then a lookup, not a search.
-    fn around(
+    /// entry and on return: labelling is then a lookup, not a search. The
+    /// key lands in `scratch`, whose buffers are reused: no allocation per
+    /// corner once they have grown.
+    pub fn around_into(
         topo: &Topology,
         features: &Features,
         [c, p, q]: [u32; 3],
         labels: &mut [u32],
-    ) -> Key {
+        scratch: &mut KeyScratch,
+    ) {
         // Label c, its ring from p, then each ring vertex's neighbours in
         // ring order from its smallest-labelled neighbour: a numbering that
         // depends on the configuration only.
@@ -419,34 +450,38 @@ impl Key {
                 global.push(g);
             }
         }
-        let mut global = Vec::new();
-        label(labels, &mut global, c);
-        let ring_c = ring_from(topo, c, p);
-        for &x in &ring_c {
-            label(labels, &mut global, x);
+        let KeyScratch { global, fan, key } = scratch;
+        global.clear();
+        label(labels, global, c);
+        for x in ring_from(topo, c, p) {
+            label(labels, global, x);
         }
-        for &x in &ring_c {
+        // The ring of c is global[1..inner] (its vertices are distinct).
+        let inner = global.len();
+        for i in 1..inner {
+            let x = global[i];
             let ring = topo.ring(x as usize);
             let from = *ring
                 .iter()
                 .min_by_key(|&&r| labels[r as usize])
                 .unwrap_or(&c);
             for y in ring_from(topo, x, from) {
-                label(labels, &mut global, y);
+                label(labels, global, y);
             }
         }
         let label_of = |g: u32| labels[g as usize];
-        let inner = 1 + ring_c.len();
         let is_inner = |l: u32| (l as usize) < inner;
-        let mut fan: Vec<u32> = global[..inner]
-            .iter()
-            .flat_map(|&v| topo.fan(v as usize).iter().copied())
-            .collect();
+        fan.clear();
+        for &v in &global[..inner] {
+            fan.extend_from_slice(topo.fan(v as usize));
+        }
         fan.sort_unstable();
         fan.dedup();
-        let mut tris: Vec<[u32; 3]> = Vec::with_capacity(fan.len());
-        let mut hard = Vec::new();
-        for &t in &fan {
+        let (tris, hard, tagged) = (&mut key.tris, &mut key.hard, &mut key.tagged);
+        tris.clear();
+        hard.clear();
+        tagged.clear();
+        for &t in fan.iter() {
             let g = topo.triangles()[t as usize];
             let l = g.map(label_of);
             for (i, &e) in topo.triangle_edges()[t as usize].iter().enumerate() {
@@ -462,18 +497,12 @@ impl Key {
         tris.sort_unstable();
         hard.sort_unstable();
         hard.dedup();
-        let tagged = (0..inner as u32)
-            .filter(|&l| features.is_tagged_vertex(global[l as usize] as usize))
-            .collect();
-        let corner = [p, q].map(label_of);
-        for &g in &global {
+        tagged.extend(
+            (0..inner as u32).filter(|&l| features.is_tagged_vertex(global[l as usize] as usize)),
+        );
+        key.corner = [p, q].map(label_of);
+        for &g in global.iter() {
             labels[g as usize] = NONE;
-        }
-        Key {
-            corner,
-            tris,
-            hard,
-            tagged,
         }
     }
 

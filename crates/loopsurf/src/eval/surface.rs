@@ -4,7 +4,7 @@
 
 use super::affine::Affine;
 use super::affine::{child_containing, rotation};
-use super::special::{configuration, Cache, Cell, Key, SpecialPatch};
+use super::special::{neighbourhood_into, Cache, Cell, Key, KeyScratch, SpecialPatch};
 use super::{box_spline, regular};
 use crate::net::ControlNet;
 use crate::topology::NONE;
@@ -47,16 +47,26 @@ impl Evaluator {
         let (topo, features) = (fine.topology(), fine.features());
         let kinds = fine.vertex_kinds();
         // Per level-1 triangle, in parallel: a regular patch's coefficients,
-        // or a special corner's configuration key and neighbourhood. Then,
-        // in order, configurations are shared through the cache. Blocks of
-        // one chunk per thread bound the memory held in between.
+        // or a special corner's neighbourhood and configuration, looked up
+        // in a per-chunk table of the chunk's distinct keys without
+        // allocating. Then, in order, configurations are shared through the
+        // cache. Blocks of one chunk per thread bound the memory held in
+        // between.
         // The regular variant is large, but only one block lives at a time.
         #[allow(clippy::large_enum_variant)]
         enum Prepared {
             Regular([DVec3; 15]),
-            Special(u8, Key, Vec<u32>),
+            Special(u8, u32, Box<[u32]>),
         }
-        let prepare = |t: usize, labels: &mut [u32]| {
+        #[derive(Default)]
+        struct Scratch {
+            labels: Vec<u32>,
+            key: KeyScratch,
+            around: Vec<u32>,
+            table: std::collections::HashMap<u64, Vec<u32>>,
+            keys: Vec<Key>,
+        }
+        let prepare = |t: usize, scratch: &mut Scratch| {
             if let Some(s) = regular::stencil(topo, features, &kinds, t) {
                 let control = s.map(|p| p.position(fine.points()));
                 return Prepared::Regular(box_spline::coefficients(&control));
@@ -66,9 +76,26 @@ impl Evaluator {
             let corner = t % 4;
             assert!(corner < 3, "centre children are regular");
             let c = topo.triangles()[t];
-            let corners = [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]];
-            let (key, points) = configuration(topo, features, corners, labels);
-            Prepared::Special(corner as u8, key, points)
+            let [c, p, q] = [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]];
+            neighbourhood_into(topo, c, p, q, &mut scratch.around);
+            Key::around_into(
+                topo,
+                features,
+                [c, p, q],
+                &mut scratch.labels,
+                &mut scratch.key,
+            );
+            let key = scratch.key.key();
+            let ids = scratch.table.entry(key.fast_hash()).or_default();
+            let id = match ids.iter().find(|&&i| scratch.keys[i as usize] == *key) {
+                Some(&i) => i,
+                None => {
+                    scratch.keys.push(key.clone());
+                    ids.push(scratch.keys.len() as u32 - 1);
+                    scratch.keys.len() as u32 - 1
+                }
+            };
+            Prepared::Special(corner as u8, id, Box::from(&scratch.around[..]))
         };
         const CHUNK: usize = 8192;
         let block = CHUNK * rayon::current_num_threads();
@@ -77,31 +104,36 @@ impl Evaluator {
         let (mut regular_patches, mut special) = (Vec::new(), Vec::new());
         let mut patches = Vec::with_capacity(ntris);
         for start in (0..ntris).step_by(block) {
-            let prepared: Vec<Prepared> = (start..(start + block).min(ntris))
+            let prepared: Vec<(Vec<Prepared>, Vec<Key>)> = (start..(start + block).min(ntris))
                 .collect::<Vec<_>>()
                 .par_chunks(CHUNK)
-                .flat_map_iter(|chunk| {
-                    let mut labels = vec![NONE; topo.num_vertices()];
-                    chunk
-                        .iter()
-                        .map(|&t| prepare(t, &mut labels))
-                        .collect::<Vec<_>>()
+                .map(|chunk| {
+                    let mut scratch = Scratch {
+                        labels: vec![NONE; topo.num_vertices()],
+                        ..Default::default()
+                    };
+                    let prepared = chunk.iter().map(|&t| prepare(t, &mut scratch)).collect();
+                    (prepared, scratch.keys)
                 })
                 .collect();
-            patches.extend(prepared.into_iter().map(|p| match p {
-                Prepared::Regular(coefficients) => {
-                    regular_patches.push(coefficients);
-                    Patch::Regular(regular_patches.len() as u32 - 1)
-                }
-                Prepared::Special(corner, key, points) => {
-                    special.push(SpecialCorner {
-                        corner,
-                        patch: cache.get(key),
-                        points: points.into_boxed_slice(),
-                    });
-                    Patch::Special(special.len() as u32 - 1)
-                }
-            }));
+            for (prepared, keys) in prepared {
+                let shared: Vec<Arc<SpecialPatch>> =
+                    keys.into_iter().map(|k| cache.get(k)).collect();
+                patches.extend(prepared.into_iter().map(|p| match p {
+                    Prepared::Regular(coefficients) => {
+                        regular_patches.push(coefficients);
+                        Patch::Regular(regular_patches.len() as u32 - 1)
+                    }
+                    Prepared::Special(corner, id, points) => {
+                        special.push(SpecialCorner {
+                            corner,
+                            patch: shared[id as usize].clone(),
+                            points,
+                        });
+                        Patch::Special(special.len() as u32 - 1)
+                    }
+                }));
+            }
         }
         regular_patches.shrink_to_fit();
         special.shrink_to_fit();
