@@ -119,4 +119,3 @@ fn corner_parameters(net: &ControlNet) -> Vec<(usize, [f64; 2])> {
     }
     out
 }
-

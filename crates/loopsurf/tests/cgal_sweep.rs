@@ -46,7 +46,9 @@ fn evaluate(net: &ControlNet, name: &str) {
     // that offset.
     let (x, normal) = (
         surface.point(0, 0.25, 0.25).unwrap(),
-        surface.normal(0, 0.25, 0.25).unwrap_or_else(|e| panic!("{name}: {e}")),
+        surface
+            .normal(0, 0.25, 0.25)
+            .unwrap_or_else(|e| panic!("{name}: {e}")),
     );
     let off = 1e-3 * diag;
     let snap = surface

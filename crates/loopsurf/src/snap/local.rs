@@ -108,7 +108,11 @@ impl Region {
 /// patch) is taken at the triangle's centre instead: the descent then goes
 /// on from a point of the surface rather than failing.
 fn eval_at(chart: &mut Chart, uv: DVec2) -> Evaluation {
-    let uv = if uv.is_finite() { uv } else { DVec2::splat(1.0 / 3.0) };
+    let uv = if uv.is_finite() {
+        uv
+    } else {
+        DVec2::splat(1.0 / 3.0)
+    };
     let e = chart
         .eval(uv.x, uv.y)
         .expect("parameters kept inside the triangle");

@@ -326,7 +326,11 @@ impl Search<'_> {
         // A piece whose flat triangle is degenerate starts at its centre.
         let start = start.unwrap_or_else(|| {
             let near = cell::closest_in_triangle(p, a, b, c);
-            piece.global(if near.is_finite() { 0.95 * near + 0.05 * centre } else { centre })
+            piece.global(if near.is_finite() {
+                0.95 * near + 0.05 * centre
+            } else {
+                centre
+            })
         });
         let region = local::Region::new(piece.corners);
         let (own, _) = local::descend_within(self.surface, p, piece.tri, start, &region);
