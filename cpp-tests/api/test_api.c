@@ -11,18 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-static int failures = 0;
-#define CHECK(cond)                                                                   \
-    do {                                                                              \
-        if (!(cond)) {                                                                \
-            fprintf(stderr, "%s:%d: FAILED: %s (last error: %s)\n", __FILE__, __LINE__, \
-                    #cond, ls_last_error());                                          \
-            failures++;                                                               \
-        }                                                                             \
-    } while (0)
-#define EXPECT(call, status) CHECK((call) == (status))
-
-static const double SENTINEL = -12345.678;
+#include "check.h"
 
 /* An octahedron: six valence-4 vertices, eight triangles. */
 static const double OCTA_XYZ[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};

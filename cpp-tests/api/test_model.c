@@ -13,18 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int failures = 0;
-#define CHECK(cond)                                                                   \
-    do {                                                                              \
-        if (!(cond)) {                                                                \
-            fprintf(stderr, "%s:%d: FAILED: %s (last error: %s)\n", __FILE__, __LINE__, \
-                    #cond, ls_last_error());                                          \
-            failures++;                                                               \
-        }                                                                             \
-    } while (0)
-#define EXPECT(call, status) CHECK((call) == (status))
-
-static const double SENTINEL = -12345.678;
+#include "check.h"
 
 /* Whether the last error contains every one of up to three strings. */
 static int error_says(const char* a, const char* b, const char* c) {

@@ -1,44 +1,10 @@
-//! The stdin query lines of `loopsurf eval` and `loopsurf snap` (three
-//! numbers a line; two and four as well) on arbitrary bytes, split into
-//! lines as `BufRead::lines` does: no panic, a refused line's error names
-//! its number, and an accepted line's numbers are written by the command's
-//! `write_numbers` and read back bit-exact (a NaN as a NaN: `{:e}` does not
-//! print its sign). Replayed on stable by the tests of
-//! crates/loopsurf-cli/src/lib.rs, which do the same.
+//! The stdin query lines of `loopsurf eval` and `loopsurf snap` on
+//! arbitrary bytes (the checks are in queries_case.rs). Replayed on stable
+//! by crates/loopsurf-cli/tests/query_lines.rs, with the same module.
 #![no_main]
 
+mod queries_case;
+
 use libfuzzer_sys::fuzz_target;
-use loopsurf_cli::{parse_query, write_numbers};
 
-fn check<const N: usize>(line: usize, text: &str) {
-    match parse_query::<N>(line, text, "shape") {
-        Ok(None) => {}
-        Ok(Some(numbers)) => {
-            let mut out = Vec::new();
-            write_numbers(&mut out, &numbers).unwrap();
-            let printed = String::from_utf8(out).unwrap();
-            let printed = printed.strip_suffix('\n').unwrap();
-            assert!(!printed.contains('\n'), "{printed:?}");
-            let again = parse_query::<N>(line, printed, "shape").unwrap().unwrap();
-            for (x, y) in numbers.iter().zip(again) {
-                assert!(
-                    x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()),
-                    "{text:?}: {x:e} read back as {y:e}"
-                );
-            }
-        }
-        Err(err) => assert!(err.to_string().starts_with(&format!("line {line}: "))),
-    }
-}
-
-fuzz_target!(|data: &[u8]| {
-    for (i, line) in data.split(|&b| b == b'\n').enumerate() {
-        let line = line.strip_suffix(b"\r").unwrap_or(line);
-        let Ok(text) = std::str::from_utf8(line) else {
-            continue;
-        };
-        check::<2>(i + 1, text);
-        check::<3>(i + 1, text);
-        check::<4>(i + 1, text);
-    }
-});
+fuzz_target!(|data: &[u8]| queries_case::replay(data));

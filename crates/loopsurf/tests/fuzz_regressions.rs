@@ -3,7 +3,7 @@
 //! through what its fuzz target does (fuzz/fuzz_targets/), and must end in
 //! a result or a clear error — no panic, in bounded memory and time. The
 //! targets outside this crate are replayed where they can be reached:
-//! `queries` by crates/loopsurf-cli/src/lib.rs, `arrays` by
+//! `queries` by crates/loopsurf-cli/tests/query_lines.rs, `arrays` by
 //! crates/loopsurf-capi/tests/hostile_arrays.rs.
 
 use loopsurf::io::{parse_mesh, ReadOptions};

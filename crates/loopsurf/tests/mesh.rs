@@ -183,22 +183,8 @@ fn examples_mesh_conforming_on_the_surface_with_hard_chains() {
     ] {
         let net = example(name, angle);
         let surface = Surface::new(&net).unwrap();
-        for (density, adapt) in [
-            (Density::Uniform(1), false),
-            (Density::Uniform(3), false),
-            (Density::FromTolerance, true),
-        ] {
-            let mesh = Mesher::new(&surface)
-                .density(density)
-                .adapt_curvature(adapt)
-                .run()
-                .unwrap();
-            check_all(
-                &net,
-                &surface,
-                &mesh,
-                &format!("{name} {density:?} adapt={adapt}"),
-            );
+        for (density, mesh) in three_meshes(&surface) {
+            check_all(&net, &surface, &mesh, &format!("{name} {density:?}"));
         }
     }
 }
@@ -472,16 +458,7 @@ fn meshes_carry_faces_and_curves_of_the_model() {
     }
     for (name, net) in &cases {
         let surface = Surface::new(net).unwrap();
-        for (density, adapt) in [
-            (Density::Uniform(1), false),
-            (Density::Uniform(3), false),
-            (Density::FromTolerance, true),
-        ] {
-            let mesh = Mesher::new(&surface)
-                .density(density)
-                .adapt_curvature(adapt)
-                .run()
-                .unwrap();
+        for (density, mesh) in three_meshes(&surface) {
             check_labels(net, &surface, &mesh, &format!("{name} {density:?}"));
         }
     }
@@ -497,4 +474,24 @@ fn meshes_carry_faces_and_curves_of_the_model() {
     assert!(err.to_string().contains("triangle 0"), "{err}");
     let err = loopsurf::mesh::face_labels(surface.model(), &[0, 1000]).unwrap_err();
     assert!(err.to_string().contains("chart 1000"), "{err}");
+}
+
+/// The surface meshed three ways: every control triangle whole, cut in
+/// nine, and graded by curvature under the default tolerance.
+fn three_meshes(surface: &Surface) -> Vec<(Density, SurfaceMesh)> {
+    [
+        (Density::Uniform(1), false),
+        (Density::Uniform(3), false),
+        (Density::FromTolerance, true),
+    ]
+    .into_iter()
+    .map(|(density, adapt)| {
+        let mesh = Mesher::new(surface)
+            .density(density)
+            .adapt_curvature(adapt)
+            .run()
+            .unwrap();
+        (density, mesh)
+    })
+    .collect()
 }
