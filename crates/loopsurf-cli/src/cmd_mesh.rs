@@ -3,7 +3,7 @@
 use crate::input::{Input, SurfaceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use loopsurf::io::{self, DataArray};
-use loopsurf::{Density, Error, Mesher, SurfaceMesh};
+use loopsurf::{Density, Error, Mesher, Remesher, SurfaceMesh};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -26,14 +26,23 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     size: Option<f64>,
-    /// Cut every control edge into N segments (N² triangles per control triangle).
+    /// Cut every control edge into N segments (N² triangles per control
+    /// triangle; the chart mesher, implies --charts).
     #[arg(long, value_name = "N")]
     uniform: Option<u32>,
+    /// The chart mesher: every output triangle inside one control triangle,
+    /// shaped like it (fast; the triangles copy the control net's shapes).
+    /// Without it, the quality remesher.
+    #[arg(long)]
+    charts: bool,
+    /// Largest ratio of neighbouring sizes per edge with --adapt (remesher).
+    #[arg(long, value_name = "G", default_value_t = loopsurf::remesh::DEFAULT_GRADATION)]
+    gradation: f64,
     /// Let the density follow curvature, bounded by the tolerance (1e-3 if
     /// none is given) and, with --size, by the edge length.
     #[arg(long, value_enum, value_name = "HOW")]
     adapt: Option<Adapt>,
-    /// Skip the max–min angle edge swaps.
+    /// Skip the max–min angle edge swaps (--charts).
     #[arg(long)]
     no_swaps: bool,
     /// Skip re-measuring the chord error with snap (the true distance).
@@ -56,29 +65,27 @@ pub fn run(args: Args) -> Result<(), Error> {
     io::check_writable(&args.output)?;
     let net = args.input.load()?;
     let surface = args.surface.build(&net)?;
-    let density = match (args.uniform, args.size) {
-        (Some(n), _) => Density::Uniform(n),
-        (None, Some(h)) => Density::Size(h),
-        (None, None) => Density::FromTolerance,
-    };
-    let mut mesher = Mesher::new(&surface)
-        .density(density)
-        .adapt_curvature(args.adapt.is_some())
-        .swaps(!args.no_swaps);
-    if let Some(eps) = args.tolerance {
-        mesher = mesher.tolerance(eps);
-    }
-    let bar = ProgressBar::new(net.triangles().len() as u64).with_style(
-        ProgressStyle::with_template("meshing {bar:40} {pos}/{len} control triangles")
-            .expect("valid template"),
-    );
     let start = Instant::now();
-    let mesh = mesher.run_with_progress(&|done, total| {
-        bar.set_length(total);
-        bar.set_position(done);
-    })?;
+    let charts = args.charts || args.uniform.is_some();
+    let mesh = if charts {
+        chart_mesh(&args, &surface)?
+    } else {
+        let mut remesher = Remesher::new(&surface)
+            .adapt_curvature(args.adapt.is_some())
+            .gradation(args.gradation);
+        if let Some(h) = args.size {
+            remesher = remesher.size(h);
+        }
+        if let Some(eps) = args.tolerance {
+            remesher = remesher.tolerance(eps);
+        }
+        let spinner = ProgressBar::new_spinner().with_message("remeshing");
+        spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+        let mesh = remesher.run()?;
+        spinner.finish_and_clear();
+        mesh
+    };
     let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
     let snapped = if args.no_verify {
         None
     } else {
@@ -117,11 +124,49 @@ pub fn run(args: Args) -> Result<(), Error> {
         writeln!(out, "max deviation: {line}")?;
         writeln!(
             out,
-            "angles: min {:.2}°, mean of per-triangle minima {:.2}°",
-            quality.min_angle, quality.mean_min_angle
+            "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20°, {:.3}% below 10°",
+            quality.min_angle,
+            quality.mean_min_angle,
+            100.0 * quality.below_20,
+            100.0 * quality.below_10
+        )?;
+        writeln!(
+            out,
+            "edge lengths: {:.4e} to {:.4e}, 90% within {:.4e} to {:.4e}, median {:.4e}",
+            quality.edge_lengths[0],
+            quality.edge_lengths[4],
+            quality.edge_lengths[1],
+            quality.edge_lengths[3],
+            quality.edge_lengths[2]
         )?;
         writeln!(out, "wrote {}", args.output.display())
     })
+}
+
+/// The chart mesher's mesh, with a progress bar over control triangles.
+fn chart_mesh(args: &Args, surface: &loopsurf::Surface) -> Result<SurfaceMesh, Error> {
+    let density = match (args.uniform, args.size) {
+        (Some(n), _) => Density::Uniform(n),
+        (None, Some(h)) => Density::Size(h),
+        (None, None) => Density::FromTolerance,
+    };
+    let mut mesher = Mesher::new(surface)
+        .density(density)
+        .adapt_curvature(args.adapt.is_some())
+        .swaps(!args.no_swaps);
+    if let Some(eps) = args.tolerance {
+        mesher = mesher.tolerance(eps);
+    }
+    let bar = ProgressBar::new(surface.net().triangles().len() as u64).with_style(
+        ProgressStyle::with_template("meshing {bar:40} {pos}/{len} control triangles")
+            .expect("valid template"),
+    );
+    let mesh = mesher.run_with_progress(&|done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+    })?;
+    bar.finish_and_clear();
+    Ok(mesh)
 }
 
 /// The mesh in OUT's format; `.vtu` carries per-vertex parameters and
@@ -166,6 +211,16 @@ fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) ->
     let quality = mesh.triangle_quality();
     let min_angle = pad_f64(quality.iter().map(|q| q.min_angle).collect());
     let shape = pad_f64(quality.iter().map(|q| q.shape).collect());
+    let mut cells = vec![
+        ("face", DataArray::I32(&face)),
+        ("edge", DataArray::I32(&edge)),
+        ("min_angle", DataArray::F64(&min_angle)),
+        ("shape_quality", DataArray::F64(&shape)),
+    ];
+    // The remesher's triangles span control triangles: no chart to name.
+    if !mesh.charts.is_empty() {
+        cells.insert(0, ("control_tri", DataArray::I32(&chart)));
+    }
     io::write_vtu_with_lines(
         path,
         &mesh.points,
@@ -179,13 +234,7 @@ fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) ->
             ("gaussian_curvature", DataArray::F64(&gaussian)),
             ("curvature_reliable", DataArray::I32(&reliable)),
         ],
-        &[
-            ("control_tri", DataArray::I32(&chart)),
-            ("face", DataArray::I32(&face)),
-            ("edge", DataArray::I32(&edge)),
-            ("min_angle", DataArray::F64(&min_angle)),
-            ("shape_quality", DataArray::F64(&shape)),
-        ],
+        &cells,
     )
 }
 

@@ -377,8 +377,10 @@ fn snap_certificate_is_an_eighth_column() {
     }
 }
 
-/// The README's main job: the mesher on the built-in Viking, with the
-/// summary, the .vtu arrays and a params file that reads back bit-exact.
+/// The README's main job: the remesher on the built-in Viking, with the
+/// summary, the .vtu arrays and a params file that reads back bit-exact
+/// (the remesher is deterministic); the chart mesher's .vtu also names
+/// each triangle's control triangle.
 #[test]
 fn mesh_the_viking_writes_its_summary_and_files() {
     let vtu = scratch("viking.vtu");
@@ -404,6 +406,8 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         "max deviation",
         "by snap",
         "angles: min",
+        "below 20°",
+        "edge lengths:",
     ] {
         assert!(
             summary.contains(needle),
@@ -417,7 +421,7 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         "w",
         "mean_curvature",
         "gaussian_curvature",
-        "control_tri",
+        "face",
         "min_angle",
         "shape_quality",
     ] {
@@ -431,9 +435,8 @@ fn mesh_the_viking_writes_its_summary_and_files() {
     let mut net = loopsurf::ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
     net.tag_by_angle(30.0).unwrap();
     let surface = loopsurf::Surface::new(&net).unwrap();
-    let mesh = loopsurf::Mesher::new(&surface)
+    let mesh = loopsurf::Remesher::new(&surface)
         .adapt_curvature(true)
-        .density(loopsurf::Density::FromTolerance)
         .run()
         .unwrap();
     let lines: Vec<String> = std::fs::read_to_string(&params)
@@ -464,6 +467,21 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         let back = loopsurf::ControlNet::read(&path).unwrap();
         assert_eq!(back.triangles().len(), 9 * 1680, "{ext}");
     }
+    let charts = scratch("viking-charts.vtu");
+    let out = loopsurf(&[
+        "mesh",
+        "--example",
+        "viking",
+        "--charts",
+        "--size",
+        "0.2",
+        "--no-verify",
+        "-o",
+        charts.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let xml = std::fs::read_to_string(&charts).unwrap();
+    assert!(xml.contains("Name=\"control_tri\""));
 }
 
 #[test]

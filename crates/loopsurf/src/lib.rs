@@ -16,8 +16,9 @@
 //!    crate-private `eval`), with [`stream`] to ship a surface as bytes;
 //! 6. [`curve`] (the model's exact curves) and [`snap`] (closest points;
 //!    its index is cached by the surface through a trait, so the surface
-//!    does not know it), then [`mesh`], [`adapt`] and [`fairness`], which
-//!    use everything below.
+//!    does not know it), then [`mesh`] (the chart mesher), [`remesh`] (the quality remesher
+//!    that starts from it), [`adapt`] and [`fairness`], which use
+//!    everything below.
 //!
 //! Built-in shapes live in [`examples`]; errors in [`error`].
 
@@ -35,6 +36,7 @@ pub mod mesh;
 pub mod model;
 pub mod net;
 pub mod refine;
+pub mod remesh;
 pub mod repair;
 pub mod rules;
 pub mod snap;
@@ -49,6 +51,7 @@ pub use glam::DVec3;
 pub use mesh::{Density, Mesher, SurfaceMesh};
 pub use net::ControlNet;
 pub use refine::{Refinement, SurfacePoint};
+pub use remesh::Remesher;
 pub use snap::Snap;
 pub use surface::{Curvature, Evaluation, Surface, SurfaceMode};
 pub use topology::Topology;

@@ -18,7 +18,7 @@ pub(crate) const GRADING: f64 = 2.0;
 /// points towards each corner and each side (curvature peaks next to
 /// irregular vertices), none exactly on the boundary (special corners
 /// report no derivatives).
-const SAMPLES: [(f64, f64); 10] = [
+pub(crate) const SAMPLES: [(f64, f64); 10] = [
     (1.0 / 3.0, 1.0 / 3.0),
     (0.05, 0.05),
     (0.9, 0.05),

@@ -25,7 +25,7 @@
 //! [`labels`] for the same labels of any mesh whose vertices carry their
 //! surface points.
 
-mod density;
+pub(crate) mod density;
 pub mod labels;
 mod pattern;
 mod quality;
@@ -88,6 +88,8 @@ pub struct SurfaceMesh {
     /// Per vertex: a control triangle and (v, w) where `eval` gives the vertex.
     pub params: Vec<SurfacePoint>,
     /// Per triangle: the control triangle whose parameter domain holds it.
+    /// Empty for the remesher's output ([`crate::Remesher`]), whose
+    /// triangles span several control triangles.
     pub charts: Vec<u32>,
     /// Per triangle: its model face, the face of its chart
     /// (`model().face_of_triangle()[charts[t]]`).

@@ -27,6 +27,12 @@ pub struct MeshQuality {
     pub mean_min_angle: f64,
     /// Smallest shape quality.
     pub min_shape: f64,
+    /// Share of triangles whose smallest angle is below 20°, and 10°.
+    pub below_20: f64,
+    pub below_10: f64,
+    /// Edge lengths (each edge once): smallest, 5th percentile, median,
+    /// 95th percentile, largest.
+    pub edge_lengths: [f64; 5],
 }
 
 fn triangle_quality(p: [DVec3; 3]) -> TriangleQuality {
@@ -57,10 +63,32 @@ impl SurfaceMesh {
     pub fn quality(&self) -> MeshQuality {
         let q = self.triangle_quality();
         let n = q.len().max(1) as f64;
+        let share = |limit: f64| q.iter().filter(|q| q.min_angle < limit).count() as f64 / n;
+        let mut edges: Vec<(u32, u32)> = self
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let mut lengths: Vec<f64> = edges
+            .iter()
+            .map(|&(a, b)| self.points[a as usize].distance(self.points[b as usize]))
+            .collect();
+        lengths.sort_unstable_by(f64::total_cmp);
+        let at = |f: f64| {
+            lengths
+                .get(((lengths.len().max(1) - 1) as f64 * f).round() as usize)
+                .copied()
+                .unwrap_or(0.0)
+        };
         MeshQuality {
             min_angle: q.iter().map(|q| q.min_angle).fold(f64::INFINITY, f64::min),
             mean_min_angle: q.iter().map(|q| q.min_angle).sum::<f64>() / n,
             min_shape: q.iter().map(|q| q.shape).fold(f64::INFINITY, f64::min),
+            below_20: share(20.0),
+            below_10: share(10.0),
+            edge_lengths: [at(0.0), at(0.05), at(0.5), at(0.95), at(1.0)],
         }
     }
 
@@ -100,13 +128,22 @@ impl SurfaceMesh {
         centroids
             .chain(midpoints)
             .map(|(t, weights)| {
-                let params = self.triangle_params(net, t);
                 let x: DVec3 = (0..3)
                     .map(|k| weights[k] * self.points[self.triangles[t][k] as usize])
                     .sum();
-                let v = (0..3).map(|k| weights[k] * params[k].v).sum::<f64>();
-                let w = (0..3).map(|k| weights[k] * params[k].w).sum::<f64>();
-                Ok(surface.snap_near(x, params[0].tri as usize, v, w)?.distance)
+                // The hint: the same weights in the chart, or without
+                // charts the surface point of the heaviest corner.
+                let (tri, v, w) = if self.charts.is_empty() {
+                    let k = (0..3).fold(0, |b, k| if weights[k] > weights[b] { k } else { b });
+                    let p = self.params[self.triangles[t][k] as usize];
+                    (p.tri, p.v, p.w)
+                } else {
+                    let params = self.triangle_params(net, t);
+                    let v = (0..3).map(|k| weights[k] * params[k].v).sum::<f64>();
+                    let w = (0..3).map(|k| weights[k] * params[k].w).sum::<f64>();
+                    (params[0].tri, v, w)
+                };
+                Ok(surface.snap_near(x, tri as usize, v, w)?.distance)
             })
             .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
     }

@@ -1,0 +1,380 @@
+//! The quality remesher: isotropic (or curvature-adaptive) triangles on the
+//! exact limit surface, whatever the shapes of the control triangles.
+//!
+//! The chart mesher ([`crate::mesh`]) cuts each control triangle in its own
+//! parameter domain, so its triangles copy the control net's shapes. Here
+//! its output is only the start: a conforming mesh with the crease chains
+//! as edge chains and every vertex a surface point. Then, for a few rounds,
+//! the passes of [`passes`] — split long edges, collapse short ones, flip
+//! towards valence 6, relax tangentially — bring every edge within
+//! [4/5, 4/3] of its target length with near-equilateral triangles, and a
+//! last max–min angle flip and relaxation polish the angles.
+//!
+//! Every vertex carries its parameters (tri, v, w) and is exactly the
+//! surface there ([`vertices`]); corners never move, crease and boundary
+//! vertices move along their exact curve, and the chains of output edges
+//! along a curve are kept (split along the curve, collapsed only along it,
+//! never flipped), so every triangle keeps its model face.
+//!
+//! The size is one length, or from the exact principal curvatures under a
+//! chord tolerance, capped and graded ([`sizing`]). With a tolerance the
+//! chord error is measured afterwards at every centroid and edge midpoint
+//! (the distance to the surface by local projection, which is at least the
+//! true distance, so a bound, confirmed by certified snap where it exceeds
+//! the tolerance); where it is exceeded the sizes there shrink and the
+//! rounds run again, up to [`TOLERANCE_ROUNDS`] times. The mesh then
+//! reports the largest chord error measured ([`SurfaceMesh::deviation`]),
+//! which a caller compares with the tolerance: a few edges can be stuck
+//! longer than their size (a split would fold a triangle where the
+//! surface turns sharply within one edge, as at a cusp of a boundary
+//! curve), and a mesh with the tolerance missed there is worth more than
+//! none.
+
+mod connectivity;
+mod passes;
+mod sizing;
+mod vertices;
+
+use crate::error::{Error, Result};
+use crate::mesh::{Density, Mesher, SurfaceMesh};
+use crate::refine::SurfacePoint;
+use crate::surface::Surface;
+use crate::topology::NONE;
+use connectivity::Connectivity;
+use glam::DVec3;
+use passes::Remeshing;
+use rayon::prelude::*;
+use sizing::Sizing;
+use std::collections::HashMap;
+use vertices::{Kind, Placer, Vertex};
+
+/// The default size cap of curvature adaptation without `size`, as a
+/// fraction of the bounding-box diagonal.
+pub const DEFAULT_ADAPT_CAP: f64 = 0.05;
+
+/// The default gradation: neighbouring sizes differ by at most this factor
+/// per edge (MMG's default hgrad).
+pub const DEFAULT_GRADATION: f64 = 1.3;
+
+/// Rounds of split, collapse, flip and relax.
+const ROUNDS: usize = 5;
+
+/// Rounds of max–min angle flips and relaxation after them.
+const POLISH: usize = 2;
+
+/// Rounds of re-sizing where the measured chord error exceeds the tolerance.
+const TOLERANCE_ROUNDS: usize = 6;
+
+/// A quality remesher of `surface`; configure it, then [`Remesher::run`].
+#[derive(Clone)]
+pub struct Remesher<'a> {
+    surface: &'a Surface,
+    size: Option<f64>,
+    tolerance: Option<f64>,
+    adapt: bool,
+    gradation: f64,
+}
+
+impl<'a> Remesher<'a> {
+    /// A remesher of `surface`; give it a size, or curvature adaptation.
+    pub fn new(surface: &'a Surface) -> Remesher<'a> {
+        Remesher {
+            surface,
+            size: None,
+            tolerance: None,
+            adapt: false,
+            gradation: DEFAULT_GRADATION,
+        }
+    }
+
+    /// The target edge length in model units (the cap, when adapting).
+    pub fn size(mut self, h: f64) -> Self {
+        self.size = Some(h);
+        self
+    }
+
+    /// The chord tolerance, relative to the bounding-box diagonal.
+    pub fn tolerance(mut self, relative: f64) -> Self {
+        self.tolerance = Some(relative);
+        self
+    }
+
+    /// Sizes from the exact principal curvatures under the tolerance
+    /// ([`crate::mesh::DEFAULT_ADAPT_TOLERANCE`] if none).
+    pub fn adapt_curvature(mut self, adapt: bool) -> Self {
+        self.adapt = adapt;
+        self
+    }
+
+    /// The largest ratio of neighbouring sizes per edge (> 1).
+    pub fn gradation(mut self, g: f64) -> Self {
+        self.gradation = g;
+        self
+    }
+
+    /// The size field and the tolerance in model units, checked.
+    fn sizing(&self) -> Result<(Sizing, Option<f64>)> {
+        let bad = |m: String| Err(Error::InvalidArgument(m));
+        let diagonal = self.surface.net().bbox_diagonal();
+        if let Some(h) = self.size {
+            if !(h.is_finite() && h > 0.0) {
+                return bad(format!("size {h}: must be a positive number"));
+            }
+        }
+        if !(self.gradation.is_finite() && self.gradation > 1.0) {
+            return bad(format!(
+                "gradation {}: must be a number greater than 1",
+                self.gradation
+            ));
+        }
+        let tolerance = match self.tolerance {
+            Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => {
+                return bad(format!("tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"))
+            }
+            Some(t) => Some(t),
+            None if self.adapt => Some(crate::mesh::DEFAULT_ADAPT_TOLERANCE),
+            None => None,
+        };
+        let tolerance = tolerance.map(|t| t * diagonal);
+        let sizing = match (self.size, self.adapt, tolerance) {
+            (Some(h), false, _) => Sizing::Uniform(h),
+            (size, _, Some(tol)) => {
+                let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
+                Sizing::curvature(self.surface, tol, cap, cap * 1e-3, self.gradation)
+            }
+            (None, _, None) => {
+                return bad(
+                    "no density given: pass a size, a tolerance or curvature adaptation".into(),
+                )
+            }
+            (Some(_), true, None) => unreachable!("adaptation has a tolerance"),
+        };
+        if let Sizing::Uniform(h) = sizing {
+            // The same budget as the chart mesher's, from the area.
+            let estimate = 4.0 * diagonal.powi(2) / (h * h);
+            if estimate > 1e9 {
+                return bad(format!(
+                    "size {h}: about {estimate:.0} triangles, too many (the diagonal is {diagonal})"
+                ));
+            }
+        }
+        Ok((sizing, tolerance))
+    }
+
+    /// Remeshes the surface.
+    pub fn run(&self) -> Result<SurfaceMesh> {
+        let (sizing, tolerance) = self.sizing()?;
+        // The chart mesher at the same density: conforming, with the crease
+        // chains, and cheap.
+        let mut start = Mesher::new(self.surface)
+            .density(Density::Size(sizing.largest()))
+            .swaps(false);
+        if let (Sizing::Curvature { .. }, Some(tol)) = (&sizing, tolerance) {
+            let diagonal = self.surface.net().bbox_diagonal();
+            start = start
+                .adapt_curvature(true)
+                .tolerance((tol / diagonal).min(0.5));
+        }
+        let start = start.run()?;
+        let mut work = start_from(self.surface, &start)?;
+        let mut deviation = None;
+        let mut shrink = vec![1.0; self.surface.net().triangles().len()];
+        for round in 0..=TOLERANCE_ROUNDS {
+            for _ in 0..ROUNDS {
+                work.size = sizing.sizes(&work.mesh, &work.vertices, &shrink);
+                work.split_long();
+                work.collapse_short();
+                work.equalize_valences();
+                work.relax();
+            }
+            for _ in 0..POLISH {
+                work.flip_for_angles();
+                work.relax();
+            }
+            work.flip_for_angles();
+            let Some(tol) = tolerance else { break };
+            let errors = chord_errors(&work, tol);
+            let worst = errors.iter().map(|e| e.1).fold(0.0, f64::max);
+            deviation = Some(worst);
+            if worst <= tol || round == TOLERANCE_ROUNDS {
+                break;
+            }
+            for (ids, e) in errors {
+                if e > tol {
+                    // Chord error falls with the square of the size.
+                    let factor = (0.9 * (tol / e).sqrt()).max(0.25);
+                    let mut tris: Vec<u32> = ids
+                        .iter()
+                        .map(|&v| work.vertices[v as usize].at.tri)
+                        .collect();
+                    tris.sort_unstable();
+                    tris.dedup();
+                    for t in tris {
+                        shrink[t as usize] *= factor;
+                    }
+                }
+            }
+        }
+        Ok(finish(&work, deviation))
+    }
+}
+
+/// The chord error of every triangle and edge as (its vertices, error):
+/// the distance from its centroid or midpoint to the surface by local
+/// projection (an upper bound of the true distance, and tight where the
+/// guess is near) and, where that exceeds `tolerance`, by certified snap.
+fn chord_errors(work: &Remeshing, tolerance: f64) -> Vec<(Vec<u32>, f64)> {
+    let mesh = &work.mesh;
+    let probes: Vec<(u32, Vec<u32>)> = (0..mesh.num_half_edges())
+        .filter(|&h| mesh.is_alive(h))
+        .flat_map(|h| {
+            let o = mesh.opposite(h);
+            let edge = (o == NONE || h < o).then(|| (h, vec![mesh.origin(h), mesh.dest(h)]));
+            let tri = (h % 3 == 0).then(|| (h, mesh.corners(h).to_vec()));
+            edge.into_iter().chain(tri)
+        })
+        .collect();
+    probes
+        .par_iter()
+        .map(|(h, ids)| {
+            let x = ids
+                .iter()
+                .map(|&i| work.vertices[i as usize].x)
+                .sum::<DVec3>()
+                / ids.len() as f64;
+            let face = mesh.face[(h / 3) as usize];
+            let guess = ids
+                .iter()
+                .map(|&i| &work.vertices[i as usize])
+                .find(|v| v.is_free())
+                .map(|v| v.at)
+                .unwrap_or_else(|| work.placer.guess_in(&work.vertices[ids[0] as usize], face));
+            let surface = work.placer.surface;
+            let mut d = surface
+                .project(x, guess.tri as usize, guess.v, guess.w)
+                .map_or(f64::INFINITY, |s| s.distance);
+            if d > tolerance {
+                // A local minimum may be the wrong one (across a fold or a
+                // crease): the certified snap decides.
+                d = surface
+                    .snap_near(x, guess.tri as usize, guess.v, guess.w)
+                    .map_or(f64::INFINITY, |s| s.distance);
+            }
+            (ids.clone(), d)
+        })
+        .collect()
+}
+
+/// The remesher's start from a chart mesh: vertex kinds from the mesh's
+/// curve edges and the model's corners.
+fn start_from<'a>(surface: &'a Surface, start: &SurfaceMesh) -> Result<Remeshing<'a>> {
+    let placer = Placer::new(surface);
+    let model = surface.model();
+    let net = surface.net();
+    let curve_edges = start.curve_edges(surface)?;
+    let mut on_curve: Vec<Option<(u32, f64)>> = vec![None; start.points.len()];
+    let mut labels = HashMap::with_capacity(curve_edges.pairs.len());
+    for ((pair, &curve), ts) in curve_edges
+        .pairs
+        .iter()
+        .zip(&curve_edges.curves)
+        .zip(&curve_edges.params)
+    {
+        labels.insert((pair[0].min(pair[1]), pair[0].max(pair[1])), curve);
+        for k in 0..2 {
+            on_curve[pair[k] as usize] = Some((curve, ts[k]));
+        }
+    }
+    let vertices: Vec<Vertex> = start
+        .params
+        .par_iter()
+        .zip(&start.points)
+        .zip(&on_curve)
+        .map(|((&at, &x), &curve)| {
+            if let Some(vertex) = control_vertex(net, at) {
+                if model.corners().binary_search(&vertex).is_ok() {
+                    return placer.corner(vertex, at);
+                }
+            }
+            Ok(match curve {
+                Some((curve, t)) => Vertex {
+                    x,
+                    at,
+                    kind: Kind::Curve { curve, t },
+                    normal: DVec3::ZERO,
+                },
+                None => Vertex {
+                    x,
+                    at,
+                    kind: Kind::Free,
+                    normal: surface
+                        .normal(at.tri as usize, at.v, at.w)
+                        .unwrap_or(DVec3::ZERO),
+                },
+            })
+        })
+        .collect::<Result<_>>()?;
+    let mesh = Connectivity::new(
+        start.points.len(),
+        &start.triangles,
+        &labels,
+        start.faces.clone(),
+    )
+    .map_err(|e| Error::InvalidArgument(format!("the start mesh is not a manifold: {e:?}")))?;
+    Ok(Remeshing::new(placer, mesh, vertices))
+}
+
+/// The control vertex a surface point sits at, if it sits at one.
+fn control_vertex(net: &crate::ControlNet, at: SurfacePoint) -> Option<u32> {
+    let weights = [1.0 - at.v - at.w, at.v, at.w];
+    let k = weights.iter().position(|&x| (x - 1.0).abs() <= 1e-12)?;
+    Some(net.triangles()[at.tri as usize][k])
+}
+
+/// The output: live vertices and triangles compacted, feature edges
+/// ordered by curve and parameter.
+fn finish(work: &Remeshing, deviation: Option<f64>) -> SurfaceMesh {
+    let (triangles, faces, index) = work.mesh.compact();
+    let mut points = Vec::with_capacity(triangles.len() / 2 + 2);
+    let mut params = Vec::with_capacity(triangles.len() / 2 + 2);
+    for (v, &i) in index.iter().enumerate() {
+        if i != NONE {
+            points.push(work.vertices[v].x);
+            params.push(work.vertices[v].at);
+        }
+    }
+    let mut hard: Vec<(u32, f64, [u32; 2])> = Vec::new();
+    let mesh = &work.mesh;
+    for h in 0..mesh.num_half_edges() {
+        if !mesh.is_alive(h) {
+            continue;
+        }
+        let o = mesh.opposite(h);
+        let label = mesh.edge_label[h as usize];
+        if label == NONE || (o != NONE && o < h) {
+            continue;
+        }
+        let (a, b) = (mesh.origin(h), mesh.dest(h));
+        let ta = work.placer.t_on(&work.vertices[a as usize], label, None);
+        let tb = work.placer.t_on(&work.vertices[b as usize], label, ta);
+        let (ta, tb) = (ta.unwrap_or(0.0), tb.unwrap_or(0.0));
+        let pair = [index[a as usize], index[b as usize]];
+        if ta <= tb {
+            hard.push((label, ta, pair));
+        } else {
+            hard.push((label, tb, [pair[1], pair[0]]));
+        }
+    }
+    hard.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    SurfaceMesh {
+        points,
+        triangles,
+        params,
+        charts: Vec::new(),
+        faces,
+        hard_edges: hard.iter().map(|e| e.2).collect(),
+        hard_edge_curves: hard.iter().map(|e| e.0).collect(),
+        deviation,
+        diagonal: work.placer.surface.net().bbox_diagonal(),
+    }
+}

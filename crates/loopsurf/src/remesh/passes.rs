@@ -1,0 +1,551 @@
+//! The passes of isotropic remeshing (Botsch & Kobbelt 2004, as in CGAL's
+//! and PMP's remeshers) with every vertex on the exact surface: split long
+//! edges, collapse short ones, flip towards valence 6, relax tangentially,
+//! and finally flip for the largest smallest angle.
+//!
+//! The expensive part, placing a vertex on the surface, runs in parallel
+//! over a whole pass's candidates from the mesh as it was; the changes are
+//! then applied one by one, each checked against the mesh as it is by then.
+//! A change is applied only if every triangle it makes is valid: not
+//! degenerate, and facing the way the surface does at its free vertices
+//! (the normal of the surface there, not of neighbouring triangles, so
+//! that folds cannot creep in step by step).
+
+use super::connectivity::{next, prev, Connectivity};
+use super::vertices::{Kind, Placer, Vertex};
+use crate::geometry::max_cosine;
+use crate::topology::NONE;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Edges longer than this times their target are split…
+pub(crate) const SPLIT_ABOVE: f64 = 4.0 / 3.0;
+/// …and shorter than this collapsed (CGAL's and PMP's bounds).
+pub(crate) const COLLAPSE_BELOW: f64 = 4.0 / 5.0;
+/// A triangle may tilt against the surface normal at its free vertices by
+/// at most acos of this (about 78°).
+const MIN_COSINE: f64 = 0.2;
+
+/// The mesh being remeshed.
+pub(crate) struct Remeshing<'a> {
+    pub placer: Placer<'a>,
+    pub mesh: Connectivity,
+    pub vertices: Vec<Vertex>,
+    pub size: Vec<f64>,
+    scratch: [Vec<u32>; 2],
+}
+
+/// A vertex about to change: its id and its new state.
+type Moved<'v> = Option<(u32, &'v Vertex)>;
+
+impl<'a> Remeshing<'a> {
+    pub fn new(placer: Placer<'a>, mesh: Connectivity, vertices: Vec<Vertex>) -> Remeshing<'a> {
+        let size = vec![f64::INFINITY; vertices.len()];
+        Remeshing {
+            placer,
+            mesh,
+            vertices,
+            size,
+            scratch: [Vec::new(), Vec::new()],
+        }
+    }
+
+    fn target(&self, a: u32, b: u32) -> f64 {
+        0.5 * (self.size[a as usize] + self.size[b as usize])
+    }
+
+    fn point(&self, v: u32, moved: Moved) -> DVec3 {
+        match moved {
+            Some((m, x)) if m == v => x.x,
+            _ => self.vertices[v as usize].x,
+        }
+    }
+
+    fn length(&self, h: u32) -> f64 {
+        let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+        self.vertices[a as usize]
+            .x
+            .distance(self.vertices[b as usize].x)
+    }
+
+    /// Each live edge once: its half-edge with the larger opposite, or the
+    /// border one.
+    fn edges(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.mesh.num_half_edges()).filter(move |&h| {
+            self.mesh.is_alive(h) && {
+                let o = self.mesh.opposite(h);
+                o == NONE || h < o
+            }
+        })
+    }
+
+    /// How well triangle `ids` (of face `face`), with `moved` in place,
+    /// faces the way the surface does: the smallest cosine between its
+    /// normal and the surface normal at its free vertices or, with none, at
+    /// its first corner that has one seen from the face; −∞ if degenerate.
+    fn alignment(&self, ids: [u32; 3], face: u32, moved: Moved) -> f64 {
+        let p = ids.map(|v| self.point(v, moved));
+        let n = (p[1] - p[0]).cross(p[2] - p[0]);
+        let scale = (0..3)
+            .map(|k| p[k].distance_squared(p[(k + 1) % 3]))
+            .fold(0.0, f64::max);
+        if !(n.length() > 1e-12 * scale) {
+            return f64::NEG_INFINITY;
+        }
+        let n = n.normalize();
+        let vertex = |v: u32| match moved {
+            Some((m, x)) if m == v => x,
+            _ => &self.vertices[v as usize],
+        };
+        let free = ids
+            .iter()
+            .map(|&v| vertex(v))
+            .filter(|v| v.is_free() && v.normal != DVec3::ZERO)
+            .map(|v| v.normal.dot(n))
+            .reduce(f64::min);
+        if let Some(worst) = free {
+            return worst;
+        }
+        let s = self.placer.surface;
+        ids.iter()
+            .find_map(|&v| {
+                let at = self.placer.guess_in(vertex(v), face);
+                s.normal(at.tri as usize, at.v, at.w)
+                    .ok()
+                    .filter(|m| *m != DVec3::ZERO)
+                    .map(|m| m.dot(n))
+            })
+            .unwrap_or(1.0)
+    }
+
+    /// Whether triangles `new` may replace triangles `old` (each as ids,
+    /// face, moved vertex): none degenerate, and each facing within
+    /// [`MIN_COSINE`] of the surface — or no worse than the worst it
+    /// replaces, so that a poor start can only improve.
+    fn accept<'v>(
+        &self,
+        new: impl IntoIterator<Item = ([u32; 3], u32, Moved<'v>)>,
+        old: impl IntoIterator<Item = ([u32; 3], u32, Moved<'v>)>,
+    ) -> bool {
+        let worst = |tris: &mut dyn Iterator<Item = ([u32; 3], u32, Moved<'v>)>| {
+            tris.map(|(ids, face, moved)| self.alignment(ids, face, moved))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let fresh = worst(&mut new.into_iter());
+        if fresh >= MIN_COSINE {
+            return true;
+        }
+        fresh > f64::NEG_INFINITY && fresh >= worst(&mut old.into_iter())
+    }
+
+    /// The smallest angle's cosine (larger is worse) of triangle `ids`.
+    fn worst_cosine(&self, ids: [u32; 3], moved: Moved) -> f64 {
+        let [a, b, c] = ids.map(|v| self.point(v, moved));
+        max_cosine(a, b, c)
+    }
+
+    /// The face of the triangle of half-edge h.
+    fn face(&self, h: u32) -> u32 {
+        self.mesh.face[(h / 3) as usize]
+    }
+
+    /// The new vertex at the middle of h's edge: on its curve if the edge is
+    /// labelled, else on the surface in the edge's face.
+    fn midpoint(&self, h: u32) -> Option<Vertex> {
+        let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+        let (va, vb) = (&self.vertices[a as usize], &self.vertices[b as usize]);
+        let label = self.mesh.edge_label[h as usize];
+        if label != NONE {
+            let ta = self.placer.t_on(va, label, None);
+            let tb = self.placer.t_on(vb, label, ta);
+            let ta = self.placer.t_on(va, label, tb).or(ta);
+            // The parameter midpoint: exact, and always between the ends
+            // (the point nearest the chord's midpoint need not be, where
+            // the curve turns sharply).
+            let t = self.placer.mid_t(label, ta?, tb?);
+            return self.placer.at_curve(label, t).ok();
+        }
+        let face = self.face(h);
+        let guess = if va.is_free() {
+            va.at
+        } else if vb.is_free() {
+            vb.at
+        } else {
+            self.placer.guess_in(va, face)
+        };
+        // A projection that lands farther than half the edge from the
+        // chord's midpoint went to another sheet of a folded surface.
+        let (mid, reach) = (0.5 * (va.x + vb.x), 0.5 * va.x.distance(vb.x));
+        self.placer
+            .free(mid, guess, face)
+            .filter(|m| m.x.distance(mid) <= reach)
+            .or_else(|| self.placer.between_in(va, vb, face))
+    }
+
+    /// Splits every edge longer than [`SPLIT_ABOVE`] × its target, again
+    /// and again until none is (or none can be). Returns the count.
+    pub fn split_long(&mut self) -> usize {
+        let mut total = 0;
+        for _ in 0..32 {
+            let long: Vec<(u32, u32)> = self
+                .edges()
+                .filter(|&h| {
+                    let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+                    self.length(h) > SPLIT_ABOVE * self.target(a, b)
+                })
+                .map(|h| (self.mesh.origin(h), self.mesh.dest(h)))
+                .collect();
+            let placed: Vec<Option<Vertex>> = long
+                .par_iter()
+                .map(|&(a, b)| self.mesh.find(a, b).and_then(|h| self.midpoint(h)))
+                .collect();
+            let mut done = 0;
+            for (&(a, b), m) in long.iter().zip(placed) {
+                let (Some(m), Some(h)) = (m, self.mesh.find(a, b)) else {
+                    continue;
+                };
+                if self.split_valid(h, &m) {
+                    let id = self.mesh.add_vertex();
+                    self.vertices.push(m);
+                    self.size.push(self.target(a, b));
+                    self.mesh.split(h, id);
+                    done += 1;
+                }
+            }
+            total += done;
+            if done == 0 {
+                break;
+            }
+        }
+        total
+    }
+
+    /// Whether the four (or two) triangles of splitting h at m may replace
+    /// the two (or one) on the edge.
+    fn split_valid(&self, h: u32, m: &Vertex) -> bool {
+        let id = self.vertices.len() as u32;
+        let moved = Some((id, m));
+        let sides: Vec<u32> = [h, self.mesh.opposite(h)]
+            .into_iter()
+            .filter(|&e| e != NONE)
+            .collect();
+        let new = sides.iter().flat_map(|&e| {
+            let (a, b, c) = (
+                self.mesh.origin(e),
+                self.mesh.dest(e),
+                self.mesh.origin(prev(e)),
+            );
+            let face = self.face(e);
+            [([a, id, c], face, moved), ([id, b, c], face, moved)]
+        });
+        let old = sides
+            .iter()
+            .map(|&e| (self.mesh.corners(e), self.face(e), None));
+        self.accept(new, old)
+    }
+
+    /// Collapses edges shorter than [`COLLAPSE_BELOW`] × their target where
+    /// the features allow and no edge of the result exceeds
+    /// [`SPLIT_ABOVE`] × its target. Returns the count.
+    pub fn collapse_short(&mut self) -> usize {
+        let mut done = 0;
+        for h in 0..self.mesh.num_half_edges() {
+            if !self.mesh.is_alive(h) {
+                continue;
+            }
+            let g = self.mesh.opposite(h);
+            if g != NONE && g < h {
+                continue;
+            }
+            let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+            if self.length(h) >= COLLAPSE_BELOW * self.target(a, b) {
+                continue;
+            }
+            for remove in [a, b] {
+                if self.can_collapse(h, remove) {
+                    self.mesh.collapse(h, remove);
+                    done += 1;
+                    break;
+                }
+            }
+        }
+        done
+    }
+
+    /// Whether h's edge may collapse with `remove` merging into the other
+    /// end (see [`Remeshing::collapse_short`]).
+    fn can_collapse(&mut self, h: u32, remove: u32) -> bool {
+        let label = self.mesh.edge_label[h as usize];
+        let keep = if self.mesh.origin(h) == remove {
+            self.mesh.dest(h)
+        } else {
+            self.mesh.origin(h)
+        };
+        match self.vertices[remove as usize].kind {
+            Kind::Corner { .. } => return false,
+            Kind::Curve { curve, .. } if label != curve => return false,
+            Kind::Free if label != NONE => return false,
+            _ => {}
+        }
+        // Two labelled sides of one triangle would merge into one edge.
+        let g = self.mesh.opposite(h);
+        for e in [h, g] {
+            if e != NONE
+                && self.mesh.edge_label[next(e) as usize] != NONE
+                && self.mesh.edge_label[prev(e) as usize] != NONE
+            {
+                return false;
+            }
+        }
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let topological = self.mesh.can_collapse(h, &mut scratch);
+        self.scratch = scratch;
+        if !topological {
+            return false;
+        }
+        // The triangles around `remove` other than the two on the edge,
+        // with `keep` in its place.
+        let x = self.vertices[keep as usize].x;
+        let outgoing: Vec<u32> = self.mesh.outgoing(remove).collect();
+        let border_last = self
+            .mesh
+            .is_border_vertex(remove)
+            .then(|| outgoing.last().map(|&l| self.mesh.origin(prev(l))))
+            .flatten();
+        let mut new = Vec::with_capacity(outgoing.len());
+        for &e in &outgoing {
+            let y = self.mesh.dest(e);
+            if y != keep
+                && x.distance(self.vertices[y as usize].x) > SPLIT_ABOVE * self.target(keep, y)
+            {
+                return false;
+            }
+            let z = self.mesh.origin(prev(e));
+            if y != keep && z != keep {
+                new.push(([keep, y, z], self.face(e), None));
+            }
+        }
+        let old = outgoing
+            .iter()
+            .map(|&e| (self.mesh.corners(e), self.face(e), None));
+        if !self.accept(new, old) {
+            return false;
+        }
+        if let Some(y) = border_last {
+            if y != keep
+                && x.distance(self.vertices[y as usize].x) > SPLIT_ABOVE * self.target(keep, y)
+            {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The valence a vertex should have: 6 inside, 4 on a border.
+    fn ideal_valence(&self, v: u32) -> i64 {
+        if self.mesh.is_border_vertex(v) {
+            4
+        } else {
+            6
+        }
+    }
+
+    /// Flips unlabelled edges where that brings the four vertices' valences
+    /// nearer their ideal and both new triangles are valid. Returns the count.
+    pub fn equalize_valences(&mut self) -> usize {
+        let mut done = 0;
+        for h in 0..self.mesh.num_half_edges() {
+            if !self.flippable(h) {
+                continue;
+            }
+            let g = self.mesh.opposite(h);
+            let [a, b, c] = self.mesh.corners(h);
+            let d = self.mesh.origin(prev(g));
+            let deviation = |v: u32, change: i64| {
+                (self.mesh.valence(v) as i64 + change - self.ideal_valence(v)).abs()
+            };
+            let before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
+            let after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
+            if after >= before {
+                continue;
+            }
+            // Valence is worth a worse angle only up to a point.
+            let old = self
+                .worst_cosine([a, b, c], None)
+                .max(self.worst_cosine([b, a, d], None));
+            let new = self
+                .worst_cosine([a, d, c], None)
+                .max(self.worst_cosine([d, b, c], None));
+            if new > old.max(FLIP_WORST_COSINE) {
+                continue;
+            }
+            if self.flip_valid(h) {
+                self.mesh.flip(h);
+                done += 1;
+            }
+        }
+        done
+    }
+
+    /// Flips unlabelled edges while that enlarges the smaller of the two
+    /// triangles' smallest angles (the max–min angle criterion, which is
+    /// Delaunay's in the plane). Returns the count.
+    pub fn flip_for_angles(&mut self) -> usize {
+        let mut total = 0;
+        for _ in 0..8 {
+            let mut done = 0;
+            for h in 0..self.mesh.num_half_edges() {
+                if !self.flippable(h) {
+                    continue;
+                }
+                let g = self.mesh.opposite(h);
+                let [a, b, c] = self.mesh.corners(h);
+                let d = self.mesh.origin(prev(g));
+                let old = self
+                    .worst_cosine([a, b, c], None)
+                    .max(self.worst_cosine([b, a, d], None));
+                let new = self
+                    .worst_cosine([a, d, c], None)
+                    .max(self.worst_cosine([d, b, c], None));
+                if new < old - 1e-9 && self.flip_valid(h) {
+                    self.mesh.flip(h);
+                    done += 1;
+                }
+            }
+            total += done;
+            if done == 0 {
+                break;
+            }
+        }
+        total
+    }
+
+    /// A live inner unlabelled edge, taken once, whose flip keeps the mesh
+    /// simple and makes no edge longer than a split allows.
+    fn flippable(&self, h: u32) -> bool {
+        if !self.mesh.is_alive(h) {
+            return false;
+        }
+        let g = self.mesh.opposite(h);
+        if g == NONE || g < h || self.mesh.edge_label[h as usize] != NONE || !self.mesh.can_flip(h)
+        {
+            return false;
+        }
+        // The new edge must not be one a split would cut again.
+        let (c, d) = (self.mesh.origin(prev(h)), self.mesh.origin(prev(g)));
+        let length = self.vertices[c as usize]
+            .x
+            .distance(self.vertices[d as usize].x);
+        length <= SPLIT_ABOVE * self.target(c, d)
+    }
+
+    fn flip_valid(&self, h: u32) -> bool {
+        let g = self.mesh.opposite(h);
+        let [a, b, c] = self.mesh.corners(h);
+        let d = self.mesh.origin(prev(g));
+        let face = self.face(h);
+        self.accept(
+            [([a, d, c], face, None), ([d, b, c], face, None)],
+            [([a, b, c], face, None), ([b, a, d], face, None)],
+        )
+    }
+
+    /// Moves every free vertex towards the area-weighted centroid of its
+    /// triangles within its tangent plane, and every curve vertex towards
+    /// the middle of its two curve neighbours along the curve; each lands on
+    /// the surface (curve) by projection and stays only if its triangles
+    /// stay valid. Returns the number moved.
+    pub fn relax(&mut self) -> usize {
+        let targets: Vec<Option<Vertex>> = (0..self.vertices.len() as u32)
+            .into_par_iter()
+            .map(|v| self.relaxed(v))
+            .collect();
+        let mut moved = 0;
+        for (v, target) in targets.into_iter().enumerate() {
+            let Some(target) = target else { continue };
+            let v = v as u32;
+            let around: Vec<([u32; 3], u32)> = self
+                .mesh
+                .outgoing(v)
+                .map(|h| (self.mesh.corners(h), self.face(h)))
+                .collect();
+            let ok = self.accept(
+                around.iter().map(|&(ids, f)| (ids, f, Some((v, &target)))),
+                around.iter().map(|&(ids, f)| (ids, f, None)),
+            );
+            if ok {
+                self.vertices[v as usize] = target;
+                moved += 1;
+            }
+        }
+        moved
+    }
+
+    /// Where relaxation would put vertex v, if anywhere.
+    fn relaxed(&self, v: u32) -> Option<Vertex> {
+        if !self.mesh.is_vertex_alive(v) {
+            return None;
+        }
+        let vertex = &self.vertices[v as usize];
+        match vertex.kind {
+            Kind::Corner { .. } => None,
+            Kind::Free => {
+                let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+                let mut face = NONE;
+                for h in self.mesh.outgoing(v) {
+                    let [a, b, c] = self.mesh.corners(h).map(|i| self.vertices[i as usize].x);
+                    let area = (b - a).cross(c - a).length();
+                    sum += area * (a + b + c) / 3.0;
+                    weight += area;
+                    face = self.face(h);
+                }
+                if !(weight > 0.0) {
+                    return None;
+                }
+                let n = vertex.normal;
+                let step = sum / weight - vertex.x;
+                let target = vertex.x + step - n * n.dot(step);
+                // As for a split: a landing far from the target is on
+                // another sheet.
+                let reach = step.length().max(1e-3 * self.size[v as usize]);
+                self.placer
+                    .free(target, vertex.at, face)
+                    .filter(|m| m.x.distance(target) <= reach)
+            }
+            Kind::Curve { curve, t } => {
+                let mut ends = [DVec3::ZERO; 2];
+                let mut params = [None; 2];
+                let mut count = 0;
+                let mut visit = |h: u32, other: u32| {
+                    if self.mesh.edge_label[h as usize] == curve {
+                        if count < 2 {
+                            let o = &self.vertices[other as usize];
+                            ends[count] = o.x;
+                            params[count] = self.placer.t_on(o, curve, Some(t));
+                        }
+                        count += 1;
+                    }
+                };
+                let mut last = NONE;
+                for h in self.mesh.outgoing(v) {
+                    visit(h, self.mesh.dest(h));
+                    last = h;
+                }
+                if self.mesh.is_border_vertex(v) {
+                    let p = prev(last);
+                    visit(p, self.mesh.origin(p));
+                }
+                let (2, [Some(t0), Some(t1)]) = (count, params) else {
+                    return None;
+                };
+                // It stays between its neighbours along the curve.
+                self.placer
+                    .on_curve(0.5 * (ends[0] + ends[1]), curve, t, t0, t1)
+            }
+        }
+    }
+}
+
+/// A valence flip may not make the worse triangle's smallest angle smaller
+/// than acos of this (about 25°), unless it improves it.
+const FLIP_WORST_COSINE: f64 = 0.906;

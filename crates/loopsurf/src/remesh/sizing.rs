@@ -1,0 +1,197 @@
+//! The size field: a target edge length per vertex, uniform or from the
+//! exact principal curvatures, graded so that neighbouring sizes differ by
+//! at most the gradation factor per edge.
+//!
+//! A circle of radius R = 1/κ is met within ε by chords of length
+//! √(8εR); an equilateral triangle of side L on a sphere of that radius
+//! deviates by L²κ/6 at its centroid. Edges may reach 4/3 of their target
+//! before they are split, so the curvature size is √(6ε/κ)·3/4 =
+//! √(3.375ε/κ), taking κ as the largest principal curvature sampled over
+//! a control triangle and, on its hard sides, also the curves' own
+//! curvature. Sizes live on the control triangles, in parameter space, so
+//! they do not drift as the vertices move; each vertex takes its own
+//! triangle's. The chord error is then measured, not trusted (see the
+//! module above), and where it is exceeded the control triangles involved
+//! shrink their size.
+
+use super::connectivity::Connectivity;
+use super::vertices::Vertex;
+use crate::surface::Surface;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Size² · κ / ε for an equilateral triangle at 4/3 of its target size
+/// to meet the tolerance at its centroid (see the module doc).
+const CHORD_FACTOR: f64 = 6.0 * 9.0 / 16.0;
+
+/// How the target edge length is set.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Sizing {
+    /// One length everywhere.
+    Uniform(f64),
+    /// Per control triangle: √(3.375ε/κ) within [`floor`, cap]; graded by
+    /// `gradation` over the mesh.
+    Curvature {
+        per_triangle: Vec<f64>,
+        floor: f64,
+        gradation: f64,
+    },
+}
+
+/// The largest curvature sampled in control triangle t: the principal
+/// curvatures at interior samples (none exactly at a corner, where a
+/// special vertex has none), and on each hard side the curve's own
+/// curvature at nine points. Sampling over the whole triangle, not at the
+/// mesh vertices, sees a bend that falls between vertices (a hairpin of a
+/// boundary curve inside one edge).
+fn largest_curvature(surface: &Surface, t: usize) -> f64 {
+    let mut k: f64 = 0.0;
+    for (v, w) in crate::mesh::density::SAMPLES {
+        if let Ok(c) = surface.curvature(t, v, w) {
+            if c.reliable {
+                k = k.max(c.k1.abs()).max(c.k2.abs());
+            }
+        }
+    }
+    let model = surface.model();
+    let topo = surface.net().topology();
+    for &e in &topo.triangle_edges()[t] {
+        let Some(curve) = model.curve_of_edge(e as usize) else {
+            continue;
+        };
+        let c = &model.curves()[curve as usize];
+        let Some(j) = c.edges.iter().position(|&x| x == e) else {
+            continue;
+        };
+        for i in 0..=8 {
+            if let Ok(x) = surface.curve_eval(curve as usize, j as f64 + i as f64 / 8.0) {
+                let speed = x.dx.length();
+                if !x.at_special_vertex && speed > 0.0 {
+                    k = k.max(x.dx.cross(x.ddx).length() / (speed * speed * speed));
+                }
+            }
+        }
+    }
+    k
+}
+
+impl Sizing {
+    /// Curvature sizing under the chord tolerance `tolerance` (model
+    /// units), sizes within [`floor`, `cap`].
+    pub fn curvature(
+        surface: &Surface,
+        tolerance: f64,
+        cap: f64,
+        floor: f64,
+        gradation: f64,
+    ) -> Sizing {
+        let per_triangle = (0..surface.net().triangles().len())
+            .into_par_iter()
+            .map(|t| {
+                let k = largest_curvature(surface, t);
+                if k > 0.0 {
+                    (CHORD_FACTOR * tolerance / k).sqrt().clamp(floor, cap)
+                } else {
+                    cap
+                }
+            })
+            .collect();
+        Sizing::Curvature {
+            per_triangle,
+            floor,
+            gradation,
+        }
+    }
+
+    /// The largest size anywhere (the cap of curvature sizing).
+    pub fn largest(&self) -> f64 {
+        match self {
+            Sizing::Uniform(h) => *h,
+            Sizing::Curvature { per_triangle, .. } => {
+                per_triangle.iter().copied().fold(0.0, f64::max)
+            }
+        }
+    }
+
+    /// The target size of every vertex (dead ones included, ignored):
+    /// its control triangle's, times that triangle's `shrink` factor (where
+    /// the chord error was too large), graded.
+    pub fn sizes(&self, mesh: &Connectivity, vertices: &[Vertex], shrink: &[f64]) -> Vec<f64> {
+        match self {
+            Sizing::Uniform(h) => vertices
+                .iter()
+                .map(|v| (h * shrink[v.at.tri as usize]).max(h * 1e-3))
+                .collect(),
+            Sizing::Curvature {
+                per_triangle,
+                floor,
+                gradation,
+            } => {
+                let mut size: Vec<f64> = vertices
+                    .iter()
+                    .map(|v| {
+                        let t = v.at.tri as usize;
+                        (per_triangle[t] * shrink[t]).max(*floor)
+                    })
+                    .collect();
+                grade(mesh, vertices, &mut size, *gradation);
+                smooth_down(mesh, &mut size);
+                size
+            }
+        }
+    }
+}
+
+/// Rounds of [`smooth_down`].
+const SMOOTHING: usize = 3;
+
+/// Lowers each size to the mean of its neighbours' where that is smaller,
+/// a few times: grading alone leaves a size field with a kink at every
+/// control triangle's border (each has its own size), and triangles
+/// across a kink cannot all be equilateral. Only lowering keeps the chord
+/// tolerance.
+fn smooth_down(mesh: &Connectivity, size: &mut [f64]) {
+    let mut ring = Vec::new();
+    for _ in 0..SMOOTHING {
+        let old = size.to_vec();
+        for v in 0..size.len() as u32 {
+            if !mesh.is_vertex_alive(v) {
+                continue;
+            }
+            mesh.neighbours(v, &mut ring);
+            if !ring.is_empty() {
+                let mean = ring.iter().map(|&u| old[u as usize]).sum::<f64>() / ring.len() as f64;
+                size[v as usize] = size[v as usize].min(mean);
+            }
+        }
+    }
+}
+
+/// Limits sizes along edges: h(v) ≤ h(u) + (g − 1)|uv|, smallest first
+/// (Dijkstra over the mesh), so a size grows by at most the factor g over
+/// one edge of its own length.
+fn grade(mesh: &Connectivity, vertices: &[Vertex], size: &mut [f64], gradation: f64) {
+    let slope = gradation - 1.0;
+    let mut heap: BinaryHeap<Reverse<(u64, u32)>> = (0..vertices.len() as u32)
+        .filter(|&v| mesh.is_vertex_alive(v))
+        .map(|v| Reverse((size[v as usize].to_bits(), v)))
+        .collect();
+    let mut ring = Vec::new();
+    while let Some(Reverse((bits, u))) = heap.pop() {
+        let h = f64::from_bits(bits);
+        if h > size[u as usize] {
+            continue;
+        }
+        let x: DVec3 = vertices[u as usize].x;
+        mesh.neighbours(u, &mut ring);
+        for &v in &ring {
+            let limit = h + slope * x.distance(vertices[v as usize].x);
+            if limit < size[v as usize] {
+                size[v as usize] = limit;
+                heap.push(Reverse((limit.to_bits(), v)));
+            }
+        }
+    }
+}

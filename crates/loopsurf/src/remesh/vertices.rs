@@ -1,0 +1,239 @@
+//! The remesher's vertices: each is a point of the limit surface given by
+//! its parameters, so that wherever a move lands it lands exactly on the
+//! surface — the solve that finds the parameters may be approximate, the
+//! point they give is not.
+//!
+//! A vertex is free (inside a model face; it moves on the surface by local
+//! projection and stays in its face), on a curve (it moves along the exact
+//! crease or boundary curve by curve projection), or a corner (it never
+//! moves and is never removed).
+
+use crate::error::Result;
+use crate::refine::SurfacePoint;
+use crate::surface::Surface;
+use glam::DVec3;
+
+/// What constrains a vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Kind {
+    Free,
+    /// On model curve `curve` at parameter t.
+    Curve {
+        curve: u32,
+        t: f64,
+    },
+    /// A model corner: the control vertex `vertex`.
+    Corner {
+        vertex: u32,
+    },
+}
+
+/// One vertex: its point, its surface parameters (`eval` of them is `x`),
+/// its constraint, and for a free vertex the surface normal there (the
+/// reference a triangle must not turn away from).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Vertex {
+    pub x: DVec3,
+    pub at: SurfacePoint,
+    pub kind: Kind,
+    pub normal: DVec3,
+}
+
+impl Vertex {
+    pub fn is_free(&self) -> bool {
+        self.kind == Kind::Free
+    }
+}
+
+/// The surface and model queries the remesher moves vertices with.
+pub(crate) struct Placer<'a> {
+    pub surface: &'a Surface,
+    face_of: &'a [u32],
+}
+
+impl<'a> Placer<'a> {
+    pub fn new(surface: &'a Surface) -> Placer<'a> {
+        Placer {
+            surface,
+            face_of: surface.model().face_of_triangle(),
+        }
+    }
+
+    /// A free vertex at the surface point nearest `target` locally, found
+    /// from `guess`; `None` when that point lies in another face than
+    /// `face` (the move would cross a crease) or has no tangent plane.
+    pub fn free(&self, target: DVec3, guess: SurfacePoint, face: u32) -> Option<Vertex> {
+        let snap = self
+            .surface
+            .project(target, guess.tri as usize, guess.v, guess.w)
+            .ok()?;
+        if self.face_of[snap.tri] != face {
+            return None;
+        }
+        let normal = self.surface.normal(snap.tri, snap.v, snap.w).ok()?;
+        if normal == DVec3::ZERO {
+            return None;
+        }
+        Some(Vertex {
+            x: snap.point,
+            at: SurfacePoint {
+                tri: snap.tri as u32,
+                v: snap.v,
+                w: snap.w,
+            },
+            kind: Kind::Free,
+            normal,
+        })
+    }
+
+    /// A vertex on curve `curve` strictly between parameters t0 and t1 (its
+    /// neighbours along the curve), near `target`: the local projection of
+    /// `target` from `t` when it stays between them, else (a curve that
+    /// turns sharply between them, where the nearest point may lie next to
+    /// an end) the parameter midway, whichever is nearer `target`.
+    pub fn on_curve(&self, target: DVec3, curve: u32, t: f64, t0: f64, t1: f64) -> Option<Vertex> {
+        let mid = self.mid_t(curve, t0, t1);
+        let halfway = self.at_curve(curve, mid).ok()?;
+        let projected = self
+            .surface
+            .curve_project(curve as usize, target, t)
+            .ok()
+            .filter(|s| self.between(curve, s.t, t0, t1, mid))
+            .and_then(|s| self.at_curve(curve, s.t).ok());
+        Some(match projected {
+            Some(p) if p.x.distance(target) < halfway.x.distance(target) => p,
+            _ => halfway,
+        })
+    }
+
+    /// The vertex at parameter t of a curve: its surface point on the
+    /// curve's first side, and the point evaluated there (so that the
+    /// vertex is exactly `eval` of its parameters).
+    pub fn at_curve(&self, curve: u32, t: f64) -> Result<Vertex> {
+        let sides = self.surface.curve_surface_points(curve as usize, t)?;
+        let at = sides[0].1;
+        Ok(Vertex {
+            x: self.surface.point(at.tri as usize, at.v, at.w)?,
+            at,
+            kind: Kind::Curve { curve, t },
+            normal: DVec3::ZERO,
+        })
+    }
+
+    /// The free vertex halfway between a and b in the parameters of a
+    /// control triangle of `face` holding both (where the projection of
+    /// the 3D midpoint leaves the face, as it may across a sharply folded
+    /// crease); `None` when no control triangle holds both.
+    pub fn between_in(&self, a: &Vertex, b: &Vertex, face: u32) -> Option<Vertex> {
+        let (pa, pb) = (self.guess_in(a, face), self.guess_in(b, face));
+        let net = self.surface.net();
+        let (v, w) = crate::mesh::reparameterize(net, pb, pa.tri)?;
+        let at = SurfacePoint {
+            tri: pa.tri,
+            v: 0.5 * (pa.v + v),
+            w: 0.5 * (pa.w + w),
+        };
+        let normal = self.surface.normal(at.tri as usize, at.v, at.w).ok()?;
+        Some(Vertex {
+            x: self.surface.point(at.tri as usize, at.v, at.w).ok()?,
+            at,
+            kind: Kind::Free,
+            normal,
+        })
+    }
+
+    /// Parameters of vertex `v` usable as a projection guess in face
+    /// `face`: a curve or corner vertex is on several faces' boundaries and
+    /// stores one; here it is re-expressed on `face`'s side.
+    pub fn guess_in(&self, v: &Vertex, face: u32) -> SurfacePoint {
+        match v.kind {
+            Kind::Free => v.at,
+            Kind::Curve { curve, t } => self
+                .surface
+                .curve_surface_points(curve as usize, t)
+                .ok()
+                .and_then(|sides| sides.into_iter().find(|s| s.0 == face).map(|s| s.1))
+                .unwrap_or(v.at),
+            Kind::Corner { vertex } => {
+                let topo = self.surface.net().topology();
+                topo.fan(vertex as usize)
+                    .iter()
+                    .find(|&&t| self.face_of[t as usize] == face)
+                    .map(|&t| {
+                        let corners = self.surface.net().triangles()[t as usize];
+                        let k = corners.iter().position(|&c| c == vertex).unwrap_or(0);
+                        let (v, w) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k];
+                        SurfacePoint { tri: t, v, w }
+                    })
+                    .unwrap_or(v.at)
+            }
+        }
+    }
+
+    /// The parameter on `curve` of a vertex known to lie on it: its own t,
+    /// or for a corner the end of the curve it is (the end nearer `near`
+    /// when the curve starts and ends at that corner).
+    pub fn t_on(&self, v: &Vertex, curve: u32, near: Option<f64>) -> Option<f64> {
+        match v.kind {
+            Kind::Curve { curve: c, t } if c == curve => Some(t),
+            Kind::Corner { vertex } => {
+                let c = &self.surface.model().curves()[curve as usize];
+                let n = c.len() as f64;
+                let (first, last) = (c.chain[0], *c.chain.last().expect("a chain"));
+                match (first == vertex, last == vertex) {
+                    (true, true) => Some(match near {
+                        Some(s) if s > 0.5 * n => n,
+                        _ => 0.0,
+                    }),
+                    (true, false) => Some(0.0),
+                    (false, true) => Some(n),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether t lies strictly between a and b on `curve`, seen from
+    /// `from` (around a closed curve, on the arc through `from`).
+    pub fn between(&self, curve: u32, t: f64, a: f64, b: f64, from: f64) -> bool {
+        let c = &self.surface.model().curves()[curve as usize];
+        let n = c.len() as f64;
+        let rel = |x: f64| {
+            if c.is_closed() {
+                let d = (x - from).rem_euclid(n);
+                if d > 0.5 * n {
+                    d - n
+                } else {
+                    d
+                }
+            } else {
+                x - from
+            }
+        };
+        let (t, a, b) = (rel(t), rel(a), rel(b));
+        a.min(b) < t && t < a.max(b)
+    }
+
+    /// The parameter midway between a and b on `curve` (around a closed
+    /// curve, the short way).
+    pub fn mid_t(&self, curve: u32, a: f64, b: f64) -> f64 {
+        let c = &self.surface.model().curves()[curve as usize];
+        let n = c.len() as f64;
+        if c.is_closed() && (a - b).abs() > 0.5 * n {
+            (0.5 * (a + b + n)).rem_euclid(n)
+        } else {
+            0.5 * (a + b)
+        }
+    }
+
+    /// The corner vertex of control vertex `vertex`, placed at its limit.
+    pub fn corner(&self, vertex: u32, at: SurfacePoint) -> Result<Vertex> {
+        Ok(Vertex {
+            x: self.surface.point(at.tri as usize, at.v, at.w)?,
+            at,
+            kind: Kind::Corner { vertex },
+            normal: DVec3::ZERO,
+        })
+    }
+}
