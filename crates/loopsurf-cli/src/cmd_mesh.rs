@@ -124,10 +124,11 @@ pub fn run(args: Args) -> Result<(), Error> {
         writeln!(out, "max deviation: {line}")?;
         writeln!(
             out,
-            "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20°, {:.3}% below 10°",
+            "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20° ({} of them at a corner or between hard edges), {:.3}% below 10°",
             quality.min_angle,
             quality.mean_min_angle,
             100.0 * quality.below_20,
+            quality.below_20_at_features,
             100.0 * quality.below_10
         )?;
         writeln!(

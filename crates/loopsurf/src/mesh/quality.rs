@@ -30,6 +30,10 @@ pub struct MeshQuality {
     /// Share of triangles whose smallest angle is below 20°, and 10°.
     pub below_20: f64,
     pub below_10: f64,
+    /// Triangles below 20° whose smallest angle a feature forces: it sits
+    /// between two hard edges, or at a corner (a vertex with other than two
+    /// hard edges), where the input's own sector may be that narrow.
+    pub below_20_at_features: usize,
     /// Edge lengths (each edge once): smallest, 5th percentile, median,
     /// 95th percentile, largest.
     pub edge_lengths: [f64; 5],
@@ -82,7 +86,9 @@ impl SurfaceMesh {
                 .copied()
                 .unwrap_or(0.0)
         };
+        let below_20_at_features = self.forced_small_angles(20.0);
         MeshQuality {
+            below_20_at_features,
             min_angle: q.iter().map(|q| q.min_angle).fold(f64::INFINITY, f64::min),
             mean_min_angle: q.iter().map(|q| q.min_angle).sum::<f64>() / n,
             min_shape: q.iter().map(|q| q.shape).fold(f64::INFINITY, f64::min),
@@ -90,6 +96,41 @@ impl SurfaceMesh {
             below_10: share(10.0),
             edge_lengths: [at(0.0), at(0.05), at(0.5), at(0.95), at(1.0)],
         }
+    }
+
+    /// The triangles whose smallest angle is below `limit` degrees and sits
+    /// at a feature (see [`MeshQuality::below_20_at_features`]).
+    fn forced_small_angles(&self, limit: f64) -> usize {
+        let key = |a: u32, b: u32| (a.min(b), a.max(b));
+        let hard: std::collections::HashSet<(u32, u32)> =
+            self.hard_edges.iter().map(|e| key(e[0], e[1])).collect();
+        let mut degree = vec![0u8; self.points.len()];
+        for e in &self.hard_edges {
+            for &v in e {
+                degree[v as usize] = degree[v as usize].saturating_add(1);
+            }
+        }
+        let cos_limit = limit.to_radians().cos();
+        self.triangles
+            .iter()
+            .filter(|t| {
+                let p = t.map(|i| self.points[i as usize]);
+                // The corner with the smallest angle (largest cosine).
+                let cosine = |k: usize| {
+                    let (u, v) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+                    u.dot(v) / (u.length() * v.length())
+                };
+                let k = (0..3)
+                    .max_by(|&a, &b| cosine(a).total_cmp(&cosine(b)))
+                    .expect("three corners");
+                if !(cosine(k) > cos_limit) {
+                    return false;
+                }
+                let (v, a, b) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let corner = degree[v as usize] != 0 && degree[v as usize] != 2;
+                corner || (hard.contains(&key(v, a)) && hard.contains(&key(v, b)))
+            })
+            .count()
     }
 
     /// Exact curvature at every vertex (unreliable, and zero, exactly at

@@ -355,7 +355,7 @@ impl<'a> Remeshing<'a> {
     pub fn equalize_valences(&mut self) -> usize {
         let mut done = 0;
         for h in 0..self.mesh.num_half_edges() {
-            if !self.flippable(h) {
+            if !self.inner_unlabelled(h) {
                 continue;
             }
             let g = self.mesh.opposite(h);
@@ -379,7 +379,7 @@ impl<'a> Remeshing<'a> {
             if new > old.max(FLIP_WORST_COSINE) {
                 continue;
             }
-            if self.flip_valid(h) {
+            if self.flip_allowed(h) {
                 self.mesh.flip(h);
                 done += 1;
             }
@@ -395,7 +395,7 @@ impl<'a> Remeshing<'a> {
         for _ in 0..8 {
             let mut done = 0;
             for h in 0..self.mesh.num_half_edges() {
-                if !self.flippable(h) {
+                if !self.inner_unlabelled(h) {
                     continue;
                 }
                 let g = self.mesh.opposite(h);
@@ -407,7 +407,7 @@ impl<'a> Remeshing<'a> {
                 let new = self
                     .worst_cosine([a, d, c], None)
                     .max(self.worst_cosine([d, b, c], None));
-                if new < old - 1e-9 && self.flip_valid(h) {
+                if new < old - 1e-9 && self.flip_allowed(h) {
                     self.mesh.flip(h);
                     done += 1;
                 }
@@ -420,23 +420,27 @@ impl<'a> Remeshing<'a> {
         total
     }
 
-    /// A live inner unlabelled edge, taken once, whose flip keeps the mesh
-    /// simple and makes no edge longer than a split allows.
-    fn flippable(&self, h: u32) -> bool {
+    /// A live inner unlabelled edge, taken once (cheap: tested first).
+    fn inner_unlabelled(&self, h: u32) -> bool {
         if !self.mesh.is_alive(h) {
             return false;
         }
         let g = self.mesh.opposite(h);
-        if g == NONE || g < h || self.mesh.edge_label[h as usize] != NONE || !self.mesh.can_flip(h)
-        {
+        g != NONE && h < g && self.mesh.edge_label[h as usize] == NONE
+    }
+
+    /// Whether flipping h keeps the mesh simple, makes no edge longer than
+    /// a split allows, and makes valid triangles.
+    fn flip_allowed(&self, h: u32) -> bool {
+        if !self.mesh.can_flip(h) {
             return false;
         }
-        // The new edge must not be one a split would cut again.
+        let g = self.mesh.opposite(h);
         let (c, d) = (self.mesh.origin(prev(h)), self.mesh.origin(prev(g)));
         let length = self.vertices[c as usize]
             .x
             .distance(self.vertices[d as usize].x);
-        length <= SPLIT_ABOVE * self.target(c, d)
+        length <= SPLIT_ABOVE * self.target(c, d) && self.flip_valid(h)
     }
 
     fn flip_valid(&self, h: u32) -> bool {
@@ -509,7 +513,7 @@ impl<'a> Remeshing<'a> {
                 // another sheet.
                 let reach = step.length().max(1e-3 * self.size[v as usize]);
                 self.placer
-                    .free(target, vertex.at, face)
+                    .nudge(vertex, target, face)
                     .filter(|m| m.x.distance(target) <= reach)
             }
             Kind::Curve { curve, t } => {

@@ -86,6 +86,51 @@ impl<'a> Placer<'a> {
         })
     }
 
+    /// A free vertex moved towards `target` (a small tangential step) by
+    /// one Gauss–Newton step in its own control triangle: two evaluations
+    /// instead of a projection's walk, which is what relaxation needs — the
+    /// point lands exactly on the surface whatever the step's accuracy.
+    /// Falls back to [`Placer::free`] where the step leaves the triangle
+    /// or the parametrisation is singular.
+    pub fn nudge(&self, v: &Vertex, target: DVec3, face: u32) -> Option<Vertex> {
+        let s = self.surface;
+        let tri = v.at.tri as usize;
+        let quick = || -> Option<Vertex> {
+            let e = s.eval(tri, v.at.v, v.at.w).ok()?;
+            if e.at_special_vertex {
+                return None;
+            }
+            let d = target - e.x;
+            let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
+            let det = a * c - b * b;
+            if !(det > 1e-24 * a * c) {
+                return None;
+            }
+            let (r, q) = (e.xv.dot(d), e.xw.dot(d));
+            let (dv, dw) = ((c * r - b * q) / det, (a * q - b * r) / det);
+            let (nv, nw) = (v.at.v + dv, v.at.w + dw);
+            if !(nv > 0.0 && nw > 0.0 && nv + nw < 1.0) {
+                return None;
+            }
+            let f = s.eval(tri, nv, nw).ok()?;
+            let normal = f.xv.cross(f.xw).normalize_or_zero();
+            if f.at_special_vertex || normal == DVec3::ZERO {
+                return None;
+            }
+            Some(Vertex {
+                x: f.x,
+                at: SurfacePoint {
+                    tri: v.at.tri,
+                    v: nv,
+                    w: nw,
+                },
+                kind: Kind::Free,
+                normal,
+            })
+        };
+        quick().or_else(|| self.free(target, v.at, face))
+    }
+
     /// A vertex on curve `curve` strictly between parameters t0 and t1 (its
     /// neighbours along the curve), near `target`: the local projection of
     /// `target` from `t` when it stays between them, else (a curve that
