@@ -8,7 +8,9 @@
 //! the passes of [`passes`] — split long edges, collapse short ones, flip
 //! towards valence 6, relax tangentially — bring every edge within
 //! [4/5, 4/3] of its target length with near-equilateral triangles, and a
-//! last max–min angle flip and relaxation polish the angles.
+//! last max–min angle flip and relaxation polish the angles. Twice early on
+//! the free vertices are shaken, deterministically: a chart lattice of
+//! right triangles is otherwise a fixed point of all four passes.
 //!
 //! Every vertex carries its parameters (tri, v, w) and is exactly the
 //! surface there ([`vertices`]); corners never move, crease and boundary
@@ -58,6 +60,12 @@ pub const DEFAULT_GRADATION: f64 = 1.3;
 
 /// Rounds of split, collapse, flip and relax.
 const ROUNDS: usize = 5;
+
+/// How far [`Remeshing::shake`] moves free vertices (a fraction of their
+/// size), and in which rounds (after the first has brought the sizes
+/// about right).
+const SHAKE: f64 = 0.4;
+const SHAKE_ROUNDS: [usize; 2] = [1, 2];
 
 /// Rounds of max–min angle flips and relaxation after them.
 const POLISH: usize = 2;
@@ -180,7 +188,10 @@ impl<'a> Remesher<'a> {
         let mut deviation = None;
         let mut shrink = vec![1.0; self.surface.net().triangles().len()];
         for round in 0..=TOLERANCE_ROUNDS {
-            for _ in 0..ROUNDS {
+            for r in 0..ROUNDS {
+                if round == 0 && SHAKE_ROUNDS.contains(&r) {
+                    work.shake(SHAKE);
+                }
                 work.size = sizing.sizes(&work.mesh, &work.vertices, &shrink);
                 work.split_long();
                 work.collapse_short();
