@@ -192,7 +192,7 @@ impl<'a> Remesher<'a> {
                 if round == 0 && SHAKE_ROUNDS.contains(&r) {
                     work.shake(SHAKE);
                 }
-                work.size = sizing.sizes(&work.mesh, &work.vertices, &shrink);
+                work.size = sizing.sizes(self.surface, &work.mesh, &work.vertices, &shrink);
                 work.split_long();
                 work.collapse_short();
                 work.equalize_valences();
@@ -213,7 +213,7 @@ impl<'a> Remesher<'a> {
             for (ids, e) in errors {
                 if e > tol {
                     // Chord error falls with the square of the size.
-                    let factor = (0.9 * (tol / e).sqrt()).max(0.25);
+                    let factor = (0.8 * (tol / e).sqrt()).max(0.25);
                     let mut tris: Vec<u32> = ids
                         .iter()
                         .map(|&v| work.vertices[v as usize].at.tri)

@@ -7,10 +7,12 @@
 //! deviates by L²κ/6 at its centroid. Edges may reach 4/3 of their target
 //! before they are split, so the curvature size is √(6ε/κ)·3/4 =
 //! √(3.375ε/κ), taking κ as the largest principal curvature sampled over
-//! a control triangle and, on its hard sides, also the curves' own
-//! curvature. Sizes live on the control triangles, in parameter space, so
-//! they do not drift as the vertices move; each vertex takes its own
-//! triangle's. The chord error is then measured, not trusted (see the
+//! a control triangle away from its corners and, on its hard sides, also
+//! the curves' own curvature. Sizes live on the control triangles, in
+//! parameter space, so they do not drift as the vertices move; each vertex
+//! takes its own triangle's, or the size of the curvature at the vertex
+//! itself where that is smaller (next to an irregular vertex, where the
+//! curvature grows without bound). The chord error is then measured, not trusted (see the
 //! module above), and where it is exceeded the control triangles involved
 //! shrink their size.
 
@@ -35,9 +37,19 @@ pub(crate) enum Sizing {
     /// `gradation` over the mesh.
     Curvature {
         per_triangle: Vec<f64>,
+        tolerance: f64,
         floor: f64,
         gradation: f64,
     },
+}
+
+/// The larger principal curvature at (t, v, w), 0 where it is undefined
+/// (at a special vertex).
+fn curvature_at(surface: &Surface, t: usize, v: f64, w: f64) -> f64 {
+    match surface.curvature(t, v, w) {
+        Ok(c) if c.reliable => c.k1.abs().max(c.k2.abs()),
+        _ => 0.0,
+    }
 }
 
 /// The largest curvature sampled in control triangle t: the principal
@@ -48,12 +60,14 @@ pub(crate) enum Sizing {
 /// boundary curve inside one edge).
 fn largest_curvature(surface: &Surface, t: usize) -> f64 {
     let mut k: f64 = 0.0;
+    // Samples away from the corners: next to an irregular corner the
+    // curvature grows without bound, and one such sample would shrink the
+    // whole triangle; the vertices' own curvature refines there instead.
     for (v, w) in crate::mesh::density::SAMPLES {
-        if let Ok(c) = surface.curvature(t, v, w) {
-            if c.reliable {
-                k = k.max(c.k1.abs()).max(c.k2.abs());
-            }
+        if v.min(w).min(1.0 - v - w) < 0.1 {
+            continue;
         }
+        k = k.max(curvature_at(surface, t, v, w));
     }
     let model = surface.model();
     let topo = surface.net().topology();
@@ -100,6 +114,7 @@ impl Sizing {
             .collect();
         Sizing::Curvature {
             per_triangle,
+            tolerance,
             floor,
             gradation,
         }
@@ -118,7 +133,13 @@ impl Sizing {
     /// The target size of every vertex (dead ones included, ignored):
     /// its control triangle's, times that triangle's `shrink` factor (where
     /// the chord error was too large), graded.
-    pub fn sizes(&self, mesh: &Connectivity, vertices: &[Vertex], shrink: &[f64]) -> Vec<f64> {
+    pub fn sizes(
+        &self,
+        surface: &Surface,
+        mesh: &Connectivity,
+        vertices: &[Vertex],
+        shrink: &[f64],
+    ) -> Vec<f64> {
         match self {
             Sizing::Uniform(h) => vertices
                 .iter()
@@ -126,14 +147,17 @@ impl Sizing {
                 .collect(),
             Sizing::Curvature {
                 per_triangle,
+                tolerance,
                 floor,
                 gradation,
             } => {
                 let mut size: Vec<f64> = vertices
-                    .iter()
+                    .par_iter()
                     .map(|v| {
                         let t = v.at.tri as usize;
-                        (per_triangle[t] * shrink[t]).max(*floor)
+                        let k = curvature_at(surface, t, v.at.v, v.at.w);
+                        let own = (CHORD_FACTOR * tolerance / k).sqrt();
+                        (per_triangle[t].min(own) * shrink[t]).max(*floor)
                     })
                     .collect();
                 grade(mesh, vertices, &mut size, *gradation);
