@@ -83,6 +83,19 @@ pub fn run(args: Args) -> Result<(), Error> {
         spinner.enable_steady_tick(std::time::Duration::from_millis(200));
         let mesh = remesher.run()?;
         spinner.finish_and_clear();
+        // The remesher returns its best mesh even where a few edges could
+        // not meet the tolerance; say so rather than pass it silently.
+        let wanted = args
+            .tolerance
+            .or(args.adapt.map(|_| loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE));
+        if let (Some(eps), Some(d)) = (wanted, mesh.deviation) {
+            if d > eps * mesh.diagonal {
+                eprintln!(
+                    "loopsurf: warning: chord tolerance {eps:e} not reached: {:.3e} of the diagonal at worst (the mesh is written)",
+                    d / mesh.diagonal
+                );
+            }
+        }
         mesh
     };
     let seconds = start.elapsed().as_secs_f64();

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{cgal_mesh, example};
-use loopsurf::{ControlNet, Remesher, Surface, SurfaceMesh};
+use loopsurf::{ControlNet, DVec3, Remesher, Surface, SurfaceMesh};
 use std::collections::HashMap;
 
 fn cgal(name: &str, angle: f64) -> Option<ControlNet> {
@@ -243,4 +243,52 @@ fn bad_options_are_refused_by_name() {
     assert!(message(Remesher::new(&surface).size(1.0).gradation(0.9).run()).contains("gradation"));
     assert!(message(Remesher::new(&surface).tolerance(2.0).run()).contains("tolerance 2"));
     assert!(message(Remesher::new(&surface).size(1e-9).run()).contains("too many"));
+}
+
+/// A size with a tolerance (no curvature adaptation): the tolerance
+/// shrinks the size only where it is missed, once per round per control
+/// triangle (it once compounded per probe, down to the floor, and the
+/// octahedron ran out of memory).
+#[test]
+fn a_size_with_a_tolerance_refines_only_where_needed() {
+    let octahedron = ControlNet::from_arrays(
+        vec![
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.0, -1.0, 0.0),
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(0.0, 0.0, -1.0),
+        ],
+        &[
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ],
+    )
+    .unwrap();
+    let surface = Surface::new(&octahedron).unwrap();
+    for tol in [1e-2, 1e-3] {
+        let mesh = Remesher::new(&surface)
+            .size(0.3)
+            .tolerance(tol)
+            .run()
+            .unwrap();
+        let snapped = mesh.snap_deviation(&surface).unwrap() / octahedron.bbox_diagonal();
+        let q = mesh.quality();
+        assert!(snapped <= tol, "{tol}: {snapped}");
+        // Curvature sizing for the same tolerance needs about this many.
+        assert!(
+            mesh.triangles.len() < 4000,
+            "{tol}: {} triangles",
+            mesh.triangles.len()
+        );
+        assert!(q.min_angle > 30.0, "{tol}: min angle {}", q.min_angle);
+        check_invariants("octahedron", &surface, &mesh);
+    }
 }

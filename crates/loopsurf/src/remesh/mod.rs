@@ -210,20 +210,30 @@ impl<'a> Remesher<'a> {
             if worst <= tol || round == TOLERANCE_ROUNDS {
                 break;
             }
-            for (ids, e) in errors {
-                if e > tol {
-                    // Chord error falls with the square of the size.
-                    let factor = (0.8 * (tol / e).sqrt()).max(0.25);
-                    let mut tris: Vec<u32> = ids
-                        .iter()
-                        .map(|&v| work.vertices[v as usize].at.tri)
-                        .collect();
-                    tris.sort_unstable();
-                    tris.dedup();
-                    for t in tris {
-                        shrink[t as usize] *= factor;
+            // Each control triangle shrinks once a round, by the factor its
+            // worst miss asks for: chord error falls with the square of the
+            // size. (Once per miss would compound over the many probes of
+            // one triangle, down to the floor.)
+            let mut factor = vec![1.0f64; shrink.len()];
+            let topo = self.surface.net().topology();
+            for (ids, e) in errors.iter().filter(|(_, e)| *e > tol) {
+                let f = (0.8 * (tol / e).sqrt()).max(0.25);
+                for &v in ids {
+                    // Its control triangle and their neighbours: vertices
+                    // relax across control edges, into sizes not shrunk.
+                    let t = work.vertices[v as usize].at.tri as usize;
+                    factor[t] = factor[t].min(f);
+                    for &e in &topo.triangle_edges()[t] {
+                        for &n in &topo.edge_triangles()[e as usize] {
+                            if n != NONE {
+                                factor[n as usize] = factor[n as usize].min(f);
+                            }
+                        }
                     }
                 }
+            }
+            for (s, f) in shrink.iter_mut().zip(factor) {
+                *s *= f;
             }
         }
         Ok(finish(&work, deviation))

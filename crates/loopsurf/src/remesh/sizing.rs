@@ -141,10 +141,18 @@ impl Sizing {
         shrink: &[f64],
     ) -> Vec<f64> {
         match self {
-            Sizing::Uniform(h) => vertices
-                .iter()
-                .map(|v| (h * shrink[v.at.tri as usize]).max(h * 1e-3))
-                .collect(),
+            Sizing::Uniform(h) => {
+                let mut size: Vec<f64> = vertices
+                    .iter()
+                    .map(|v| (h * shrink[v.at.tri as usize]).max(h * 1e-3))
+                    .collect();
+                // Graded where a tolerance shrank some triangles' sizes.
+                if shrink.iter().any(|&f| f < 1.0) {
+                    grade(mesh, vertices, &mut size, super::DEFAULT_GRADATION);
+                    smooth_down(mesh, &mut size);
+                }
+                size
+            }
             Sizing::Curvature {
                 per_triangle,
                 tolerance,
