@@ -71,6 +71,19 @@ fn check_invariants(name: &str, surface: &Surface, mesh: &SurfaceMesh) {
         "{name}: watertight exactly where the net is"
     );
     let model = surface.model();
+    // The labels any mesh gets from its vertices' parameters alone (what
+    // `ls_mesh_hard_edges` returns) are the remesher's own.
+    let labels = loopsurf::mesh::curve_edges(surface, &mesh.params, &mesh.triangles).unwrap();
+    let key = |p: [u32; 2]| (p[0].min(p[1]), p[0].max(p[1]));
+    let mut ours: Vec<(u32, u32, u32)> = (mesh.hard_edges.iter().zip(&mesh.hard_edge_curves))
+        .map(|(&p, &c)| (c, key(p).0, key(p).1))
+        .collect();
+    let mut theirs: Vec<(u32, u32, u32)> = (labels.pairs.iter().zip(&labels.curves))
+        .map(|(&p, &c)| (c, key(p).0, key(p).1))
+        .collect();
+    ours.sort_unstable();
+    theirs.sort_unstable();
+    assert_eq!(ours, theirs, "{name}: hard edges from the parameters alone");
     let mut degree: HashMap<(u32, u32), u32> = HashMap::new();
     for (pair, &curve) in mesh.hard_edges.iter().zip(&mesh.hard_edge_curves) {
         for &v in pair {

@@ -4,14 +4,17 @@
 //!
 //! Both need only each vertex's surface point (tri, v, w) and, for faces,
 //! each triangle's chart, so they apply to any mesh that carries them (the
-//! mesher's, or one a caller built from it). An output edge lies on a curve
-//! when both of its ends lie on the same hard control edge: at one of its
-//! end vertices or on its side of the triangle holding the point, within
-//! [`PARAMETER_TOLERANCE`] of the barycentric weights. On that control
-//! edge, the k-th of its curve, a point at weight s of the edge's second
-//! chain vertex has curve parameter t = k + s: the crease rules are the
-//! cubic B-spline's on both, so the curve and the surface share their
-//! parameterisation along the edge.
+//! mesher's, the remesher's, or one a caller built from it). A vertex lies
+//! on a curve when its point lies on one of the curve's control edges: at
+//! one of its end vertices or on its side of the triangle holding the
+//! point, within [`PARAMETER_TOLERANCE`] of the barycentric weights. On
+//! that control edge, the k-th of its curve, a point at weight s of the
+//! edge's second chain vertex has curve parameter t = k + s: the crease
+//! rules are the cubic B-spline's on both, so the curve and the surface
+//! share their parameterisation along the edge. An output edge lies on a
+//! curve when its two ends are neighbours in t among the mesh's vertices on
+//! that curve (so it may span several control edges, as the remesher's
+//! do).
 
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -23,9 +26,10 @@ use crate::topology::NONE;
 /// Output edges along the model's curves.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CurveEdges {
-    /// Vertex pairs, each running the way its curve does (increasing t),
-    /// ordered by curve and then by t, so that a curve's edges follow one
-    /// another from its start to its end.
+    /// Vertex pairs, each running the way its curve does (increasing t,
+    /// but for a closed curve's edge across its start), ordered by curve
+    /// and then by t, so that a curve's edges follow one another from its
+    /// start to its end.
     pub pairs: Vec<[u32; 2]>,
     /// The curve id of each pair.
     pub curves: Vec<u32>,
@@ -65,19 +69,6 @@ fn place_of(net: &ControlNet, p: SurfacePoint) -> Place {
             Place::Edge(e, weights[at_second] / (weights[a] + weights[b]))
         }
         _ => Place::Inside,
-    }
-}
-
-/// The control edge both places lie on, if any.
-fn common_edge(net: &ControlNet, a: Place, b: Place) -> Option<u32> {
-    let topo = net.topology();
-    match (a, b) {
-        (Place::Vertex(x), Place::Vertex(y)) => topo.find_edge(x, y).map(|e| e as u32),
-        (Place::Vertex(x), Place::Edge(e, _)) | (Place::Edge(e, _), Place::Vertex(x)) => {
-            topo.edges()[e as usize].contains(&x).then_some(e)
-        }
-        (Place::Edge(e, _), Place::Edge(f, _)) => (e == f).then_some(e),
-        _ => None,
     }
 }
 
@@ -138,36 +129,71 @@ pub fn curve_edges(
         }
     }
     let model = surface.model();
-    let places: Vec<Place> = params.iter().map(|&p| place_of(net, p)).collect();
     let mut edge_pos = vec![NONE; net.topology().num_edges()];
     for curve in model.curves() {
         for (k, &e) in curve.edges.iter().enumerate() {
             edge_pos[e as usize] = k as u32;
         }
     }
-    // (curve, t of the first end, pair, params), once per undirected edge.
-    let mut found: Vec<(u32, f64, [u32; 2], [f64; 2])> = Vec::new();
+    // Every (curve, t, vertex) a vertex lies at: on a hard control edge,
+    // or at a chain vertex (a corner on several curves; a closed curve's
+    // first vertex at both t = 0 and t = n).
+    let mut on_curve: Vec<(u32, f64, u32)> = Vec::new();
+    for (i, &p) in params.iter().enumerate() {
+        match place_of(net, p) {
+            place @ Place::Edge(e, _) => {
+                if let Some(c) = model.curve_of_edge(e as usize) {
+                    let pos = edge_pos[e as usize] as usize;
+                    let from = model.curves()[c as usize].chain[pos];
+                    on_curve.push((c, curve_param(net, place, e, pos, from), i as u32));
+                }
+            }
+            Place::Vertex(x) => {
+                let topo = net.topology();
+                let mut curves: Vec<u32> = topo
+                    .ring(x as usize)
+                    .iter()
+                    .filter_map(|&y| topo.find_edge(x, y))
+                    .filter_map(|e| model.curve_of_edge(e))
+                    .collect();
+                curves.sort_unstable();
+                curves.dedup();
+                for c in curves {
+                    let chain = &model.curves()[c as usize].chain;
+                    for (j, _) in chain.iter().enumerate().filter(|(_, &v)| v == x) {
+                        on_curve.push((c, j as f64, i as u32));
+                    }
+                }
+            }
+            Place::Inside => {}
+        }
+    }
+    on_curve.sort_by(|x, y| {
+        (x.0, x.1, x.2)
+            .partial_cmp(&(y.0, y.1, y.2))
+            .expect("finite")
+    });
+    on_curve.dedup();
+    let mut joined = std::collections::HashSet::with_capacity(3 * triangles.len());
     for tri in triangles {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            let (pa, pb) = (places[a as usize], places[b as usize]);
-            let Some(e) = common_edge(net, pa, pb) else {
-                continue;
-            };
-            let Some(c) = model.curve_of_edge(e as usize) else {
-                continue;
-            };
-            let pos = edge_pos[e as usize] as usize;
-            let from = model.curves()[c as usize].chain[pos];
-            let (ta, tb) = (
-                curve_param(net, pa, e, pos, from),
-                curve_param(net, pb, e, pos, from),
-            );
-            found.push(if ta <= tb {
-                (c, ta, [a, b], [ta, tb])
-            } else {
-                (c, tb, [b, a], [tb, ta])
-            });
+            joined.insert((a.min(b), a.max(b)));
+        }
+    }
+    // Along each curve, neighbours in t joined by an output edge are its
+    // edges (so an output edge may span several control edges); around a
+    // closed curve, also its last and first vertex.
+    let mut found: Vec<(u32, f64, [u32; 2], [f64; 2])> = Vec::new();
+    for run in on_curve.chunk_by(|x, y| x.0 == y.0) {
+        let c = run[0].0;
+        let closed = model.curves()[c as usize].is_closed();
+        let wrap = closed.then(|| (run[run.len() - 1], run[0]));
+        for (x, y) in run.windows(2).map(|w| (w[0], w[1])).chain(wrap) {
+            let (a, b) = (x.2, y.2);
+            if a != b && joined.contains(&(a.min(b), a.max(b))) {
+                found.push((c, x.1, [a, b], [x.1, y.1]));
+            }
         }
     }
     found.sort_by(|x, y| {
@@ -175,7 +201,7 @@ pub fn curve_edges(
             .partial_cmp(&(y.0, y.1, y.2))
             .expect("finite")
     });
-    found.dedup_by(|x, y| x.2 == y.2);
+    found.dedup_by(|x, y| x.0 == y.0 && (x.2 == y.2 || x.2 == [y.2[1], y.2[0]]));
     Ok(CurveEdges {
         pairs: found.iter().map(|f| f.2).collect(),
         curves: found.iter().map(|f| f.0).collect(),

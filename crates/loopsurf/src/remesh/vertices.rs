@@ -67,7 +67,7 @@ impl<'a> Placer<'a> {
             .surface
             .project(target, guess.tri as usize, guess.v, guess.w)
             .ok()?;
-        if self.face_of[snap.tri] != face {
+        if self.face_of[snap.tri] != face || self.on_feature(snap.tri, snap.v, snap.w) {
             return None;
         }
         let normal = self.surface.normal(snap.tri, snap.v, snap.w).ok()?;
@@ -129,6 +129,28 @@ impl<'a> Placer<'a> {
             })
         };
         quick().or_else(|| self.free(target, v.at, face))
+    }
+
+    /// Whether (tri, v, w) lies on a hard control edge or at a vertex with
+    /// one (within round-off): a free vertex there would sit on a curve
+    /// without being one of its vertices, and make a flat triangle with
+    /// the curve's chain (a local projection stops on a crease, clamped).
+    fn on_feature(&self, tri: usize, v: f64, w: f64) -> bool {
+        let net = self.surface.net();
+        let topo = net.topology();
+        let features = net.features();
+        let weights = [1.0 - v - w, v, w];
+        let zero = weights.map(|x| x.abs() <= 1e-12);
+        let corners = net.triangles()[tri];
+        (0..3).any(|z| {
+            // Side (z + 1, z + 2) is the one without corner z.
+            zero[z] && features.is_hard_edge(topo.triangle_edges()[tri][(z + 1) % 3] as usize)
+        }) || (0..3).any(|k| {
+            zero[(k + 1) % 3]
+                && zero[(k + 2) % 3]
+                && (features.is_tagged_vertex(corners[k] as usize)
+                    || features.hard_neighbours(topo, corners[k] as usize).len() > 0)
+        })
     }
 
     /// A vertex on curve `curve` strictly between parameters t0 and t1 (its
