@@ -1,5 +1,6 @@
-//! `ls_mesh`: the surface mesher through the C ABI, and the model labels
-//! of a mesh on the surface (`ls_mesh_face_labels`, `ls_mesh_hard_edges`).
+//! `ls_mesh` and `ls_remesh`: the chart mesher and the quality remesher
+//! through the C ABI, and the model labels of a mesh on the surface
+//! (`ls_mesh_face_labels`, `ls_mesh_hard_edges`).
 //!
 //! The labels are separate functions over ls_mesh's arrays rather than
 //! more outputs of ls_mesh (13 arguments already): they keep ls_mesh as it
@@ -9,7 +10,8 @@
 use crate::buffers::{Blocks, MeshArrays};
 use crate::ls_surface;
 use crate::status::{input, output, run, Fail, LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT};
-use loopsurf::{Density, Mesher, SurfacePoint};
+use loopsurf::remesh::DEFAULT_GRADATION;
+use loopsurf::{Density, Mesher, Remesher, SurfacePoint};
 use std::ffi::c_int;
 
 /// Meshes the limit surface (see `loopsurf mesh`). Density: `uniform` N ≥ 1
@@ -116,6 +118,125 @@ pub unsafe extern "C" fn ls_mesh(
     })
 }
 
+/// The quality remesher (the default of `loopsurf mesh`): near-equilateral
+/// triangles on the limit surface, free across control triangles, so their
+/// shapes do not copy the net's. Every vertex is the surface at its (tri,
+/// v, w), corners stay, crease and boundary vertices lie on their exact
+/// curves with chains of edges along them, and every triangle lies in one
+/// model face.
+///
+/// Density: `size` > 0 is the target edge length in model units (0: none).
+/// `tolerance` in (0, 1), relative to the bounding-box diagonal, bounds the
+/// chord error (0: none): it is measured after meshing and the sizes shrink
+/// where it is exceeded, a few rounds at most. `adapt_curvature` 1 sizes
+/// the edges from the exact principal curvatures under the tolerance (1e-3
+/// when 0), capped by `size` when given; 0 keeps `size` everywhere.
+/// Without a size, a tolerance alone adapts too. `gradation` > 1 bounds the
+/// ratio of neighbouring sizes per edge when adapting (0: the default, 1.3).
+///
+/// Writes `nverts`, `xyz` (3 × nverts), `ntris`, `tris` (3 × ntris, 0-based,
+/// counter-clockwise like the net) and, per vertex, `vertex_tri` (nverts)
+/// and `vertex_vw` (2 × nverts): `ls_evaluate(vertex_tri[i], vw[2i],
+/// vw[2i+1])` is vertex i. Optional (NULL to skip): `tri_face` (ntris), the
+/// model face of each triangle (as `ls_model_*` number faces), and
+/// `deviation`, the largest chord error measured, relative to the diagonal
+/// (compare it with `tolerance`: a few edges may be stuck longer, e.g. at
+/// a cusp), or -1 when no tolerance applied (`tolerance` and
+/// `adapt_curvature` both 0). There is no `tri_chart`: a triangle may span
+/// several control triangles. Release every array with `ls_free_array`;
+/// nothing is written on failure.
+///
+/// Hard edges: `ls_mesh_hard_edges` on this mesh gives its edges along the
+/// curves, with their curves and parameters, from `vertex_tri`,
+/// `vertex_vw` and `tris` alone.
+#[no_mangle]
+pub unsafe extern "C" fn ls_remesh(
+    surface: *const ls_surface,
+    size: f64,
+    tolerance: f64,
+    adapt_curvature: c_int,
+    gradation: f64,
+    nverts: *mut usize,
+    xyz: *mut *mut f64,
+    ntris: *mut usize,
+    tris: *mut *mut i32,
+    vertex_tri: *mut *mut i32,
+    vertex_vw: *mut *mut f64,
+    tri_face: *mut *mut i32,
+    deviation: *mut f64,
+) -> c_int {
+    run("ls_remesh", || {
+        let surface = &input(surface, "surface")?.0;
+        let outs = (
+            output(nverts, "nverts")?,
+            output(xyz, "xyz")?,
+            output(ntris, "ntris")?,
+            output(tris, "tris")?,
+            output(vertex_tri, "vertex_tri")?,
+            output(vertex_vw, "vertex_vw")?,
+        );
+        let bad = |m: String| Err(Fail::new(LS_ERR_INVALID_ARGUMENT, m));
+        if !(size.is_finite() && size >= 0.0) {
+            return bad(format!("size = {size}: must be positive, or 0 for none"));
+        }
+        if !(0.0..1.0).contains(&tolerance) {
+            return bad(format!(
+                "tolerance = {tolerance}: must lie in (0, 1), or be 0 for none"
+            ));
+        }
+        let adapt = match adapt_curvature {
+            0 => false,
+            1 => true,
+            _ => {
+                return bad(format!(
+                    "adapt_curvature = {adapt_curvature}: must be 0 or 1"
+                ))
+            }
+        };
+        let gradation = if gradation == 0.0 {
+            DEFAULT_GRADATION
+        } else if gradation.is_finite() && gradation > 1.0 {
+            gradation
+        } else {
+            return bad(format!(
+                "gradation = {gradation}: must be greater than 1, or 0 for the default"
+            ));
+        };
+        let mut remesher = Remesher::new(surface)
+            .adapt_curvature(adapt)
+            .gradation(gradation);
+        if size != 0.0 {
+            remesher = remesher.size(size);
+        }
+        if tolerance != 0.0 {
+            remesher = remesher.tolerance(tolerance);
+        }
+        let mesh = remesher.run()?;
+        let mut blocks = Blocks::default();
+        let arrays = MeshArrays::copy(&mut blocks, &mesh.points, &mesh.triangles, &mesh.params)?;
+        let faces_out = if tri_face.is_null() {
+            std::ptr::null_mut()
+        } else {
+            let faces: Vec<i32> = mesh.faces.iter().map(|&f| f as i32).collect();
+            blocks.copy(&faces)?
+        };
+        blocks.hand_over();
+        *outs.0 = mesh.points.len();
+        *outs.1 = arrays.xyz;
+        *outs.2 = mesh.triangles.len();
+        *outs.3 = arrays.tris;
+        *outs.4 = arrays.vertex_tri;
+        *outs.5 = arrays.vertex_vw;
+        if !tri_face.is_null() {
+            *tri_face = faces_out;
+        }
+        if !deviation.is_null() {
+            *deviation = mesh.deviation.map_or(-1.0, |d| d / mesh.diagonal);
+        }
+        Ok(())
+    })
+}
+
 /// Borrows `per × n` values; NULL (unless n is 0) and sizes beyond memory
 /// are errors. No reference is made from `p` before the size is known good.
 unsafe fn slice<'a, T>(p: *const T, n: usize, per: usize, what: &str) -> Result<&'a [T], Fail> {
@@ -182,11 +303,13 @@ pub unsafe extern "C" fn ls_mesh_face_labels(
 }
 
 /// The hard edges of a mesh on the surface, with their model curves: the
-/// mesh edges whose two ends lie on the same hard control edge (at one of
-/// its end vertices or on it, by their (tri, v, w)). For ls_mesh's output
-/// these are exactly the output edges along the net's hard edges.
+/// mesh edges whose two ends lie on the same model curve (on its control
+/// edges or at its chain vertices, by their (tri, v, w)) and are neighbours
+/// along it among the mesh's vertices on that curve. For the output of
+/// ls_mesh and ls_remesh these are exactly the output edges along the
+/// net's hard edges.
 ///
-/// Input: the mesh as ls_mesh writes it: `nverts` vertices with their
+/// Input: the mesh as ls_mesh or ls_remesh writes it: `nverts` vertices with their
 /// control triangle `vertex_tri` (nverts) and (v, w) `vertex_vw` (2 ×
 /// nverts), and `ntris` triangles `tris` (3 × ntris, 0-based).
 ///
@@ -194,7 +317,8 @@ pub unsafe extern "C" fn ls_mesh_face_labels(
 /// `curves` (nhard curve ids, as `ls_model_*` number curves) and, unless
 /// NULL, `curve_t` (2 × nhard): the curve parameters t of each pair's two
 /// vertices, the curve (`ls_curve_evaluate`) at t being the vertex. Each
-/// pair runs the way its curve does (t increasing), and the pairs are
+/// pair runs the way its curve does (t increasing, but for a closed
+/// curve's edge across its start), and the pairs are
 /// ordered by curve and then by t, so that a curve's edges follow one
 /// another from its start to its end. Release the arrays with
 /// `ls_free_array`; nothing is written on failure.

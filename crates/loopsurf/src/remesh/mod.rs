@@ -173,17 +173,25 @@ impl<'a> Remesher<'a> {
     pub fn run(&self) -> Result<SurfaceMesh> {
         let (sizing, tolerance) = self.sizing()?;
         // The chart mesher at the same density: conforming, with the crease
-        // chains, and cheap.
-        let mut start = Mesher::new(self.surface)
+        // chains, and cheap. Under a tolerance it starts adapted, unless the
+        // chart mesher cannot meet it (its own measure, in parameters, can
+        // stall where the remesher's sizes do not): then from the largest
+        // size alone.
+        let plain = Mesher::new(self.surface)
             .density(Density::Size(sizing.largest()))
             .swaps(false);
-        if let (Sizing::Curvature { .. }, Some(tol)) = (&sizing, tolerance) {
-            let diagonal = self.surface.net().bbox_diagonal();
-            start = start
-                .adapt_curvature(true)
-                .tolerance((tol / diagonal).min(0.5));
-        }
-        let start = start.run()?;
+        let start = match (&sizing, tolerance) {
+            (Sizing::Curvature { .. }, Some(tol)) => {
+                let diagonal = self.surface.net().bbox_diagonal();
+                plain
+                    .clone()
+                    .adapt_curvature(true)
+                    .tolerance((tol / diagonal).min(0.5))
+                    .run()
+                    .or_else(|_| plain.run())?
+            }
+            _ => plain.run()?,
+        };
         let mut work = start_from(self.surface, &start)?;
         let mut deviation = None;
         let mut shrink = vec![1.0; self.surface.net().triangles().len()];
