@@ -225,6 +225,19 @@ module loopsurf
             ! variable receives the array.
             type(c_ptr), value :: tri_chart, tri_vw
         end function
+        ! The quality remesher. Optional outputs: absent skips one (NULL).
+        integer(c_int) function ls_remesh(surface, size, tolerance, adapt_curvature, gradation, &
+                nverts, xyz, ntris, tris, vertex_tri, vertex_vw, tri_face, deviation) &
+                bind(C, name="ls_remesh")
+            import :: c_int, c_double, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), value :: size, tolerance, gradation
+            integer(c_int), value :: adapt_curvature
+            integer(c_size_t), intent(out) :: nverts, ntris
+            type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
+            type(c_ptr), intent(out), optional :: tri_face
+            real(c_double), intent(out), optional :: deviation
+        end function
         integer(c_int) function ls_mesh_face_labels(surface, ntris, tri_chart, tri_face) &
                 bind(C, name="ls_mesh_face_labels")
             import :: c_int, c_size_t, c_int32_t, c_ptr
@@ -529,6 +542,52 @@ contains
         xyz_out = answer%xyz
         distance = answer%distance
         lower_bound = answer%lower_bound
+    end function
+
+    !> The quality remesher (ls_remesh): near-equilateral triangles on the
+    !> limit surface. size is the target edge length in model units (0 for
+    !> none), tolerance the chord tolerance relative to the bounding-box
+    !> diagonal (0 for none), adapt_curvature sizes from the curvature under
+    !> it, gradation > 1 bounds neighbouring sizes' ratio (0 for the default).
+    !> Allocates xyz(3, nverts), tris(3, ntris) with 1-BASED vertex numbers,
+    !> per vertex its 1-BASED control triangle vertex_tri(nverts) and (v, w)
+    !> vertex_vw(2, nverts), so that loopsurf_evaluate(surface, vertex_tri(i),
+    !> vertex_vw(1, i), vertex_vw(2, i), r) gives r(1:3) = xyz(:, i), and the
+    !> 1-BASED model face of each triangle tri_face(ntris). deviation is the
+    !> largest chord error measured, relative to the diagonal, or -1 when no
+    !> tolerance applied. Everything is left untouched on failure.
+    integer function loopsurf_remesh(surface, size, tolerance, adapt_curvature, gradation, &
+            xyz, tris, vertex_tri, vertex_vw, tri_face, deviation) result(status)
+        type(c_ptr), intent(in) :: surface
+        real(c_double), intent(in) :: size, tolerance, gradation
+        logical, intent(in) :: adapt_curvature
+        real(c_double), allocatable, intent(inout) :: xyz(:, :), vertex_vw(:, :)
+        integer, allocatable, intent(inout) :: tris(:, :), vertex_tri(:), tri_face(:)
+        real(c_double), intent(inout) :: deviation
+        integer(c_size_t) :: nv, nt
+        type(c_ptr) :: cxyz, ctris, ctri, cvw, cface
+        real(c_double) :: dev
+        real(c_double), pointer :: pxyz(:, :), pvw(:, :)
+        integer(c_int32_t), pointer :: ptris(:, :), ptri(:), pface(:)
+        status = ls_remesh(surface, size, tolerance, merge(1_c_int, 0_c_int, adapt_curvature), gradation, &
+            nv, cxyz, nt, ctris, ctri, cvw, cface, dev)
+        if (status /= LS_OK) return
+        call c_f_pointer(cxyz, pxyz, [3_c_size_t, nv])
+        call c_f_pointer(ctris, ptris, [3_c_size_t, nt])
+        call c_f_pointer(ctri, ptri, [nv])
+        call c_f_pointer(cvw, pvw, [2_c_size_t, nv])
+        call c_f_pointer(cface, pface, [nt])
+        xyz = pxyz
+        tris = int(ptris) + 1
+        vertex_tri = int(ptri) + 1
+        vertex_vw = pvw
+        tri_face = int(pface) + 1
+        deviation = dev
+        call ls_free_array(cxyz)
+        call ls_free_array(ctris)
+        call ls_free_array(ctri)
+        call ls_free_array(cvw)
+        call ls_free_array(cface)
     end function
 
     ! The model with 1-BASED ids: faces, curves, corners, triangles and

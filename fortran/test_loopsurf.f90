@@ -104,6 +104,28 @@ program test_loopsurf
     call ls_free_array(rtris)
     call ls_free_array(mtri)
     call ls_free_array(mvw)
+    ! The quality remesher, 1-based: vertices on the surface at their
+    ! parameters, faces of the model (the one curve bounds no face: 1 face).
+    block
+        real(c_double), allocatable :: rx(:, :), rvw(:, :)
+        integer, allocatable :: rt(:, :), rtri(:), rface(:)
+        real(c_double) :: dev
+        call check(loopsurf_remesh(surf, 0.3d0, 0d0, .false., 0d0, rx, rt, rtri, rvw, rface, dev) == LS_OK, &
+            "remesh")
+        call check(size(rx, 2) > 6 .and. size(rt, 2) > 8 .and. size(rtri) == size(rx, 2), "remesh counts")
+        call check(minval(rt) == 1 .and. maxval(rt) == size(rx, 2), "remesh: 1-based vertices")
+        call check(minval(rtri) >= 1 .and. maxval(rtri) <= 8 .and. all(rface == 1), "remesh: triangles, faces")
+        call check(dev == -1d0, "remesh: no tolerance, no deviation")
+        i = size(rx, 2) / 2
+        call check(loopsurf_evaluate(surf, rtri(i), rvw(1, i), rvw(2, i), r) == LS_OK, "eval remeshed vertex")
+        call check(maxval(abs(r(1:3) - rx(:, i))) <= 1d-13, "remeshed vertex on the surface")
+        call check(loopsurf_remesh(surf, 0.3d0, 1d-3, .true., 1.5d0, rx, rt, rtri, rvw, rface, dev) == LS_OK, &
+            "adaptive remesh")
+        call check(dev >= 0d0, "adaptive remesh: deviation measured")
+        call check(loopsurf_remesh(surf, 0.3d0, 0d0, .false., 0.5d0, rx, rt, rtri, rvw, rface, dev) &
+            == LS_ERR_INVALID_ARGUMENT, "remesh: gradation 0.5")
+        call check(index(loopsurf_last_error(), "gradation") > 0, "remesh: names gradation")
+    end block
     ! Adaptive subdivision at angle 0 is uniform: 8 * 4**2 triangles, closed.
     call check(ls_adapt(surf, 0d0, 0d0, 2_c_int, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw) == LS_OK, "adapt")
     call check(nt == 128 .and. nv == 66, "adapt counts")

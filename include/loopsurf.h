@@ -233,6 +233,51 @@ int ls_mesh(const ls_surface *surface,
             int32_t **tri_chart,
             double **tri_vw);
 
+// The quality remesher (the default of `loopsurf mesh`): near-equilateral
+// triangles on the limit surface, free across control triangles, so their
+// shapes do not copy the net's. Every vertex is the surface at its (tri,
+// v, w), corners stay, crease and boundary vertices lie on their exact
+// curves with chains of edges along them, and every triangle lies in one
+// model face.
+//
+// Density: `size` > 0 is the target edge length in model units (0: none).
+// `tolerance` in (0, 1), relative to the bounding-box diagonal, bounds the
+// chord error (0: none): it is measured after meshing and the sizes shrink
+// where it is exceeded, a few rounds at most. `adapt_curvature` 1 sizes
+// the edges from the exact principal curvatures under the tolerance (1e-3
+// when 0), capped by `size` when given; 0 keeps `size` everywhere.
+// Without a size, a tolerance alone adapts too. `gradation` > 1 bounds the
+// ratio of neighbouring sizes per edge when adapting (0: the default, 1.3).
+//
+// Writes `nverts`, `xyz` (3 × nverts), `ntris`, `tris` (3 × ntris, 0-based,
+// counter-clockwise like the net) and, per vertex, `vertex_tri` (nverts)
+// and `vertex_vw` (2 × nverts): `ls_evaluate(vertex_tri[i], vw[2i],
+// vw[2i+1])` is vertex i. Optional (NULL to skip): `tri_face` (ntris), the
+// model face of each triangle (as `ls_model_*` number faces), and
+// `deviation`, the largest chord error measured, relative to the diagonal
+// (compare it with `tolerance`: a few edges may be stuck longer, e.g. at
+// a cusp), or -1 when no tolerance applied (`tolerance` and
+// `adapt_curvature` both 0). There is no `tri_chart`: a triangle may span
+// several control triangles. Release every array with `ls_free_array`;
+// nothing is written on failure.
+//
+// Hard edges: `ls_mesh_hard_edges` on this mesh gives its edges along the
+// curves, with their curves and parameters, from `vertex_tri`,
+// `vertex_vw` and `tris` alone.
+int ls_remesh(const ls_surface *surface,
+              double size,
+              double tolerance,
+              int adapt_curvature,
+              double gradation,
+              size_t *nverts,
+              double **xyz,
+              size_t *ntris,
+              int32_t **tris,
+              int32_t **vertex_tri,
+              double **vertex_vw,
+              int32_t **tri_face,
+              double *deviation);
+
 // The model face of every triangle of a mesh on the surface: triangle i,
 // inside control triangle `tri_chart[i]` (ls_mesh's `tri_chart`), lies in
 // face `tri_face[i]`, the face of its chart. Faces are the model's
@@ -246,11 +291,13 @@ int ls_mesh_face_labels(const ls_surface *surface,
                         int32_t *tri_face);
 
 // The hard edges of a mesh on the surface, with their model curves: the
-// mesh edges whose two ends lie on the same hard control edge (at one of
-// its end vertices or on it, by their (tri, v, w)). For ls_mesh's output
-// these are exactly the output edges along the net's hard edges.
+// mesh edges whose two ends lie on the same model curve (on its control
+// edges or at its chain vertices, by their (tri, v, w)) and are neighbours
+// along it among the mesh's vertices on that curve. For the output of
+// ls_mesh and ls_remesh these are exactly the output edges along the
+// net's hard edges.
 //
-// Input: the mesh as ls_mesh writes it: `nverts` vertices with their
+// Input: the mesh as ls_mesh or ls_remesh writes it: `nverts` vertices with their
 // control triangle `vertex_tri` (nverts) and (v, w) `vertex_vw` (2 ×
 // nverts), and `ntris` triangles `tris` (3 × ntris, 0-based).
 //
@@ -258,7 +305,8 @@ int ls_mesh_face_labels(const ls_surface *surface,
 // `curves` (nhard curve ids, as `ls_model_*` number curves) and, unless
 // NULL, `curve_t` (2 × nhard): the curve parameters t of each pair's two
 // vertices, the curve (`ls_curve_evaluate`) at t being the vertex. Each
-// pair runs the way its curve does (t increasing), and the pairs are
+// pair runs the way its curve does (t increasing, but for a closed
+// curve's edge across its start), and the pairs are
 // ordered by curve and then by t, so that a curve's edges follow one
 // another from its start to its end. Release the arrays with
 // `ls_free_array`; nothing is written on failure.

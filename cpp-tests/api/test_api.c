@@ -737,6 +737,211 @@ static void test_mesh_labels(const char* data_dir) {
     ls_net_free(net);
 }
 
+/* 1 when every directed edge of the mesh is used once and its reverse
+ * once too: each undirected edge has exactly two triangles, consistently
+ * oriented (a closed, oriented manifold). */
+static int closed_oriented(const int32_t* tris, size_t nt) {
+    int64_t* keys = malloc((3 * nt + 1) * sizeof *keys);
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++)
+            keys[3 * t + k] = (int64_t)tris[3 * t + k] << 32 | (uint32_t)tris[3 * t + (k + 1) % 3];
+    qsort(keys, 3 * nt, sizeof *keys, compare_i64);
+    int ok = nt > 0;
+    for (size_t i = 0; ok && i < 3 * nt; i++) {
+        int64_t reverse = (keys[i] & 0xffffffff) << 32 | (keys[i] >> 32);
+        if ((i + 1 < 3 * nt && keys[i + 1] == keys[i]) ||
+            !bsearch(&reverse, keys, 3 * nt, sizeof *keys, compare_i64))
+            ok = 0;
+    }
+    free(keys);
+    return ok;
+}
+
+/* The smallest corner angle of a mesh, in degrees. */
+static double smallest_angle(const double* xyz, const int32_t* tris, size_t nt) {
+    double smallest = 180;
+    for (size_t t = 0; t < nt; t++) {
+        for (int k = 0; k < 3; k++) {
+            const double* a = xyz + 3 * tris[3 * t + k];
+            const double* b = xyz + 3 * tris[3 * t + (k + 1) % 3];
+            const double* c = xyz + 3 * tris[3 * t + (k + 2) % 3];
+            double u[3], v[3], uv = 0, uu = 0, vv = 0;
+            for (int i = 0; i < 3; i++) {
+                u[i] = b[i] - a[i];
+                v[i] = c[i] - a[i];
+                uv += u[i] * v[i];
+                uu += u[i] * u[i];
+                vv += v[i] * v[i];
+            }
+            double cosine = uv / sqrt(uu * vv);
+            double angle = acos(cosine > 1 ? 1 : cosine < -1 ? -1 : cosine) * 180 / acos(-1.0);
+            if (!(angle >= smallest)) smallest = angle; /* NaN (a zero edge) counts as 0 */
+        }
+    }
+    return smallest;
+}
+
+/* The bounding-box diagonal of n points. */
+static double diagonal(const double* xyz, size_t n) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], xyz[3 * i + k]);
+            hi[k] = fmax(hi[k], xyz[3 * i + k]);
+        }
+    for (int k = 0; k < 3; k++) d += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return sqrt(d);
+}
+
+/* ls_remesh on a closed net at size h: every vertex is the surface at its
+ * (tri, v, w) to 1e-12 of the diagonal, the mesh is closed and oriented,
+ * no angle is below 20°, and every face id is one of the model's. */
+static void check_remesh(ls_surface* surface, double h, double diag) {
+    size_t nv = 0, nt = 0, nfaces = 0, ncurves = 0, ncorners = 0;
+    EXPECT(ls_model_counts(surface, &nfaces, &ncurves, &ncorners), LS_OK);
+    double *xyz = NULL, *vw = NULL, dev = SENTINEL;
+    int32_t *tris = NULL, *vtri = NULL, *face = NULL;
+    double r[18];
+    EXPECT(ls_remesh(surface, h, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_OK);
+    CHECK(nv > 0 && nt > 0 && dev == -1.0);
+    size_t ntri = 0;
+    EXPECT(ls_surface_num_triangles(surface, &ntri), LS_OK);
+    double worst = 0;
+    for (size_t i = 0; i < nv; i++) {
+        CHECK(vtri[i] >= 0 && (size_t)vtri[i] < ntri);
+        EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
+        for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(r[k] - xyz[3 * i + k]));
+    }
+    CHECK(worst <= 1e-12 * diag);
+    int in_range = 1;
+    for (size_t t = 0; t < nt; t++) {
+        for (int c = 0; c < 3; c++) in_range &= tris[3 * t + c] >= 0 && (size_t)tris[3 * t + c] < nv;
+        in_range &= face[t] >= 0 && (size_t)face[t] < nfaces;
+    }
+    CHECK(in_range);
+    if (in_range) {
+        CHECK(closed_oriented(tris, nt));
+        double smallest = smallest_angle(xyz, tris, nt);
+        if (!(smallest > 20)) fprintf(stderr, "smallest angle %.2f° at size %g\n", smallest, h);
+        CHECK(smallest > 20);
+    }
+    /* The hard edges, from the parameters alone: mesh edges, every curve
+       present, each end the curve at its parameter. */
+    size_t nh = 0;
+    int32_t *pairs = NULL, *curves = NULL;
+    double* ct = NULL;
+    EXPECT(ls_mesh_hard_edges(surface, nv, vtri, vw, nt, tris, &nh, &pairs, &curves, &ct), LS_OK);
+    CHECK(ncurves == 0 || nh >= ncurves);
+    double off_curve = 0;
+    for (size_t i = 0; i < nh; i++) {
+        for (int e = 0; e < 2; e++) {
+            double x[9];
+            EXPECT(ls_curve_evaluate(surface, curves[i], ct[2 * i + e], x), LS_OK);
+            for (int k = 0; k < 3; k++) off_curve = fmax(off_curve, fabs(x[k] - xyz[3 * pairs[2 * i + e] + k]));
+        }
+    }
+    CHECK(off_curve <= 1e-9 * diag);
+    ls_free_array(pairs);
+    ls_free_array(curves);
+    ls_free_array(ct);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    ls_free_array(face);
+}
+
+/* ls_remesh: the checks above on the octahedron and on fandisk tagged at
+ * 30° (12 faces); the chord error measured under a tolerance; optional
+ * outputs skipped; refusals that name the argument, outputs untouched. */
+static void test_remesh(const char* data_dir) {
+    ls_surface* surface = octahedron(NULL);
+    const double octa_diag = 2 * sqrt(3.0);
+    check_remesh(surface, 0.3, octa_diag);
+
+    /* Adaptive under a tolerance: the chord error measured, within it here;
+       tri_face and deviation may be skipped. */
+    size_t nv = 0, nt = 0;
+    double *xyz = NULL, *vw = NULL, dev = -5;
+    int32_t *tris = NULL, *vtri = NULL, *face = NULL;
+    EXPECT(ls_remesh(surface, 0.3, 1e-2, 1, 1.5, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, &dev), LS_OK);
+    CHECK(nt > 8 && closed_edges(tris, nt) > 0);
+    CHECK(dev >= 0 && dev <= 1e-2);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    EXPECT(ls_remesh(surface, 0.5, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
+    CHECK(euler(nv, tris, nt) == 2);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+
+    /* Refusals, each naming its argument; outputs untouched. */
+    xyz = (double*)&SENTINEL;
+    face = (int32_t*)&SENTINEL;
+    nv = 77;
+    dev = -5;
+    struct {
+        double size, tolerance;
+        int adapt;
+        double gradation;
+        const char* name;
+    } bad[] = {
+        {-1, 0, 0, 0, "size"},
+        {NAN, 0, 0, 0, "size"},
+        {INFINITY, 0, 0, 0, "size"},
+        {0.3, -1e-3, 0, 0, "tolerance"},
+        {0.3, NAN, 0, 0, "tolerance"},
+        {0.3, 1.0, 0, 0, "tolerance"},
+        {0.3, 0, 2, 0, "adapt_curvature"},
+        {0.3, 0, -1, 0, "adapt_curvature"},
+        {0.3, 0, 1, 0.5, "gradation"},
+        {0.3, 0, 1, 1.0, "gradation"},
+        {0.3, 0, 1, -2, "gradation"},
+        {0.3, 0, 1, NAN, "gradation"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        EXPECT(ls_remesh(surface, bad[i].size, bad[i].tolerance, bad[i].adapt, bad[i].gradation, &nv, &xyz, &nt,
+                         &tris, &vtri, &vw, &face, &dev),
+               LS_ERR_INVALID_ARGUMENT);
+        CHECK(strstr(ls_last_error(), "ls_remesh: ") == ls_last_error());
+        CHECK(strstr(ls_last_error(), bad[i].name) != NULL);
+    }
+    /* No density at all. */
+    EXPECT(ls_remesh(surface, 0, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_remesh(NULL, 0.3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_NULL_POINTER);
+    EXPECT(ls_remesh(surface, 0.3, 0, 0, 0, &nv, &xyz, NULL, &tris, &vtri, &vw, &face, &dev), LS_ERR_NULL_POINTER);
+    CHECK(strstr(ls_last_error(), "ntris") != NULL);
+    EXPECT(ls_remesh(surface, 0.3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, NULL, &face, &dev), LS_ERR_NULL_POINTER);
+    CHECK(xyz == (double*)&SENTINEL && face == (int32_t*)&SENTINEL && nv == 77 && dev == -5);
+    ls_surface_free(surface);
+
+    /* fandisk, hard edges by angle: 12 faces, the model's. */
+    char path[4096];
+    snprintf(path, sizeof path, "%s/fandisk.off", data_dir);
+    ls_net* net = NULL;
+    EXPECT(ls_net_load(path, &net), LS_OK);
+    if (!net) return;
+    EXPECT(ls_net_tag_by_angle(net, 30, NULL), LS_OK);
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+    size_t nfaces = 0, ncurves = 0, ncorners = 0;
+    EXPECT(ls_model_counts(surface, &nfaces, &ncurves, &ncorners), LS_OK);
+    CHECK(nfaces == 12);
+    size_t ncv = 0, nct = 0;
+    double* points = NULL;
+    int32_t* control = NULL;
+    EXPECT(ls_refine(surface, 0, 0, &ncv, &points, &nct, &control), LS_OK); /* the net itself */
+    double diag = diagonal(points, ncv);
+    CHECK(diag > 0);
+    check_remesh(surface, 0.03 * diag, diag);
+    ls_free_array(points);
+    ls_free_array(control);
+    ls_surface_free(surface);
+    ls_net_free(net);
+}
+
 static void test_adapt(void) {
     ls_surface* surface = octahedron(NULL);
     size_t nv = 0, nt = 0;
@@ -853,6 +1058,7 @@ int main(int argc, char** argv) {
     test_refine();
     test_mesh();
     test_mesh_labels(data_dir);
+    test_remesh(data_dir);
     test_adapt();
     test_streams();
     const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",
