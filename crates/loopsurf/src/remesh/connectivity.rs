@@ -70,21 +70,41 @@ impl Connectivity {
         face: Vec<u32>,
     ) -> Result<Connectivity, BuildError> {
         let origin: Vec<u32> = triangles.iter().flatten().copied().collect();
-        let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(origin.len());
-        for h in 0..origin.len() as u32 {
-            let key = (origin[h as usize], origin[next(h) as usize]);
-            if directed.insert(key, h).is_some() {
-                return Err(BuildError::RepeatedEdge([key.0, key.1]));
-            }
-        }
+        // Half-edges sorted by their undirected edge (then direction): the
+        // two halves of an inner edge end up side by side.
+        let mut keyed: Vec<(u64, u32)> = (0..origin.len() as u32)
+            .map(|h| {
+                let (a, b) = (origin[h as usize], origin[next(h) as usize]);
+                let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+                (key << 1 | (a > b) as u64, h)
+            })
+            .collect();
+        keyed.sort_unstable();
         let mut opposite = vec![NONE; origin.len()];
         let mut edge_label = vec![NONE; origin.len()];
-        for (&(a, b), &h) in &directed {
-            if let Some(&g) = directed.get(&(b, a)) {
-                opposite[h as usize] = g;
+        for run in keyed.chunk_by(|x, y| x.0 >> 1 == y.0 >> 1) {
+            let key = run[0].0 >> 1;
+            let (a, b) = ((key >> 32) as u32, key as u32);
+            match run {
+                [_] => {}
+                [x, y] if x.0 != y.0 => {
+                    opposite[x.1 as usize] = y.1;
+                    opposite[y.1 as usize] = x.1;
+                }
+                // Two in one direction, or a third triangle on the edge.
+                [_, y, ..] => {
+                    let y = y.1;
+                    return Err(BuildError::RepeatedEdge([
+                        origin[y as usize],
+                        origin[next(y) as usize],
+                    ]));
+                }
+                [] => unreachable!("chunks are not empty"),
             }
-            if let Some(&l) = edge_labels.get(&(a.min(b), a.max(b))) {
-                edge_label[h as usize] = l;
+            if let Some(&l) = edge_labels.get(&(a, b)) {
+                for &(_, e) in run {
+                    edge_label[e as usize] = l;
+                }
             }
         }
         let mut out = vec![NONE; num_vertices];
@@ -586,6 +606,23 @@ mod tests {
         let h = t.find(0, 1).unwrap();
         assert!(!t.can_collapse(h, &mut scratch));
         assert!(!t.can_flip(h));
+    }
+
+    #[test]
+    fn repeated_and_nonmanifold_edges_are_refused() {
+        let same_way = [[0, 1, 2], [0, 1, 3]];
+        assert_eq!(
+            Connectivity::new(4, &same_way, &HashMap::new(), vec![0; 2]).unwrap_err(),
+            BuildError::RepeatedEdge([0, 1])
+        );
+        let three = [[0, 1, 2], [1, 0, 3], [1, 0, 4]];
+        assert!(Connectivity::new(5, &three, &HashMap::new(), vec![0; 3]).is_err());
+        // Two fans touching at vertex 0.
+        let bowtie = [[0, 1, 2], [0, 3, 4]];
+        assert_eq!(
+            Connectivity::new(5, &bowtie, &HashMap::new(), vec![0; 2]).unwrap_err(),
+            BuildError::NonManifoldVertex(0)
+        );
     }
 
     #[test]
