@@ -1,10 +1,18 @@
 // Peer benchmark (built by CMake, not run by ctest): loopsurf against
 // OpenSubdiv Bfr evaluation, against OpenMesh LoopT and OpenSubdiv Far
-// uniform refinement, and its exact snap against CGAL's AABB-tree closest
-// point on the flat control net, on the same meshes and points, in one run.
+// uniform refinement, its exact snap against CGAL's AABB-tree closest
+// point on the flat control net, and its remesher against CGAL's isotropic
+// remeshing of the control net, on the same meshes and points, in one run.
 // Medians of several repetitions; single thread unless noted (run with
-// RAYON_NUM_THREADS=1 for a single-thread loopsurf refinement).
-// Usage: bench_peers DATA_DIR
+// RAYON_NUM_THREADS=1 for a single-thread loopsurf refinement and remesher).
+//
+// Usage: bench_peers DATA_DIR [--viking FILE] [SECTION...]
+// SECTION is eval, refine, snap or remesh (all when none is named). The
+// remeshing cases include the built-in Viking, which the C ABI does not
+// expose; write its control net once with
+//   target/release/loopsurf refine --example viking --levels 0 -o viking.off
+// and pass that file as --viking (without it that case is skipped).
+#include "cgal_remesh.hpp"
 #include "osd.hpp"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
@@ -16,10 +24,12 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/version.h>
 
 #include <chrono>
 #include <functional>
 #include <random>
+#include <set>
 
 struct Traits : OpenMesh::DefaultTraits {
     typedef OpenMesh::Vec3d Point;
@@ -233,15 +243,130 @@ static void refinement(const std::string& path, int levels) {
     ls_surface_free(n.surface);
 }
 
+// Smallest angle of every triangle, in degrees, by one formula for every
+// mesh compared: atan2(|u × v|, u · v) at each corner, accurate for
+// slivers where acos of the cosine is not.
+struct AngleStats {
+    size_t triangles = 0;
+    double min = 180, mean_min = 0;
+};
+
+static AngleStats angle_stats(const std::vector<double>& xyz, const std::vector<int32_t>& tris) {
+    AngleStats s;
+    s.triangles = tris.size() / 3;
+    double sum = 0;
+    for (size_t t = 0; t < s.triangles; t++) {
+        const double* p[3] = {&xyz[3 * size_t(tris[3 * t])], &xyz[3 * size_t(tris[3 * t + 1])], &xyz[3 * size_t(tris[3 * t + 2])]};
+        double smallest = 180;
+        for (int k = 0; k < 3; k++) {
+            const double *a = p[k], *b = p[(k + 1) % 3], *c = p[(k + 2) % 3];
+            double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+            double angle = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
+            smallest = std::min(smallest, angle * 180 / M_PI);
+        }
+        s.min = std::min(s.min, smallest);
+        sum += smallest;
+    }
+    s.mean_min = s.triangles ? sum / double(s.triangles) : 0;
+    return s;
+}
+
+static double median(std::vector<double> t) {
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+static void remesh_row(const std::string& label, const char* peer, const AngleStats& s, double seconds) {
+    std::printf("| %s | %s | %zu | %.1f° | %.1f° | %.3f s | %.0f k/s |\n", label.c_str(), peer, s.triangles, s.min, s.mean_min,
+                seconds, double(s.triangles) / seconds / 1e3);
+}
+
+// One case: the control net with its edges above `angle` degrees sharp,
+// remeshed at the target edge length `relative` × its diagonal by CGAL's
+// isotropic remeshing (on the flat net) and by loopsurf's remesher (on the
+// limit surface). Only the remeshing itself is timed.
+static void remeshing(const std::string& name, const std::string& path, double angle, double relative, int reps) {
+    Net n = load_net(path, angle);
+    const double h = relative * n.diagonal;
+
+    CgalRemeshing cgal = cgal_isotropic_remeshing(n.xyz, n.tris, angle, h, 3, reps);
+    // Both sides should constrain the same edges (the same rule, boundary
+    // edges included); say so if they do not. ls_net_hard_edges gives
+    // pairs i < j, as CgalRemeshing::sharp.
+    std::vector<std::array<int32_t, 2>> hard;
+    for (size_t e = 0; e < n.hard.size() / 2; e++) hard.push_back({n.hard[2 * e], n.hard[2 * e + 1]});
+    std::sort(hard.begin(), hard.end());
+    if (hard != cgal.sharp)
+        std::fprintf(stderr, "%s: %zu sharp edges for CGAL, %zu hard for loopsurf, not the same set\n", name.c_str(), cgal.sharp.size(),
+                     hard.size());
+
+    // loopsurf: the surface (tagged, built) is ready; only ls_remesh runs
+    // on the clock, and its arrays are freed after.
+    AngleStats loop;
+    std::vector<double> loop_t;
+    for (int r = 0; r < reps; r++) {
+        size_t nv, nt;
+        double *xyz, *vw, deviation;
+        int32_t *tris, *vertex_tri, *tri_face;
+        auto a = std::chrono::steady_clock::now();
+        if (ls_remesh(n.surface, h, 0, 0, 0, &nv, &xyz, &nt, &tris, &vertex_tri, &vw, &tri_face, &deviation) != LS_OK) fail("ls_remesh");
+        loop_t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+        if (r == 0) loop = angle_stats(std::vector<double>(xyz, xyz + 3 * nv), std::vector<int32_t>(tris, tris + 3 * nt));
+        for (void* p : {(void*)xyz, (void*)tris, (void*)vertex_tri, (void*)vw, (void*)tri_face}) ls_free_array(p);
+    }
+
+    char label[96];
+    std::snprintf(label, sizeof label, "%s, %g%%, %g°", name.c_str(), 100 * relative, angle);
+    remesh_row(label, "CGAL isotropic_remeshing", angle_stats(cgal.xyz, cgal.tris), median(cgal.seconds));
+    remesh_row(label, "loopsurf ls_remesh", loop, median(loop_t));
+    ls_surface_free(n.surface);
+}
+
 int main(int argc, char** argv) {
-    std::string dir = argc > 1 ? argv[1] : ".";
+    std::string dir = ".", viking;
+    std::set<std::string> sections;
+    for (int i = 1; i < argc; i++) {
+        std::string a = argv[i];
+        if (a == "--viking" && i + 1 < argc)
+            viking = argv[++i];
+        else if (a == "eval" || a == "refine" || a == "snap" || a == "remesh")
+            sections.insert(a);
+        else if (i == 1)
+            dir = a;
+        else {
+            std::fprintf(stderr, "usage: bench_peers DATA_DIR [--viking FILE] [eval|refine|snap|remesh ...]\n");
+            return 2;
+        }
+    }
+    auto run = [&](const char* section) { return sections.empty() || sections.count(section); };
     int major, minor, patch;
     ls_version(&major, &minor, &patch);
-    std::printf("loopsurf %d.%d.%d vs OpenSubdiv 3.5 (Bfr defaults, Far) and OpenMesh LoopT, medians\n", major, minor, patch);
-    evaluation("pig", dir + "/pig.off");
-    evaluation("bunny00", dir + "/bunny00.off");
-    refinement(dir + "/bunny00.off", 3);
-    snapping("pig", dir + "/pig.off");
-    snapping("bunny00", dir + "/bunny00.off");
+    std::printf("loopsurf %d.%d.%d vs OpenSubdiv 3.5 (Bfr defaults, Far), OpenMesh LoopT and CGAL %s, medians\n", major, minor, patch,
+                CGAL_VERSION_STR);
+    if (run("eval")) {
+        evaluation("pig", dir + "/pig.off");
+        evaluation("bunny00", dir + "/bunny00.off");
+    }
+    if (run("refine")) refinement(dir + "/bunny00.off", 3);
+    if (run("snap")) {
+        snapping("pig", dir + "/pig.off");
+        snapping("bunny00", dir + "/bunny00.off");
+    }
+    if (run("remesh")) {
+        const char* threads = std::getenv("RAYON_NUM_THREADS");
+        const int reps = 5;
+        std::printf("\nRemeshing, medians of %d runs: CGAL isotropic_remeshing of the control net (3 iterations, sharp\n"
+                    "edges constrained, one thread), loopsurf's remesher of the limit surface (%s threads)\n\n",
+                    reps, threads ? threads : "all");
+        std::printf("| case: h (of the diagonal), sharp edges | peer | triangles | min angle | mean-min | time | triangles/s |\n"
+                    "|---|---|---|---|---|---|---|\n");
+        if (!viking.empty())
+            remeshing("Viking", viking, 30, 0.01, reps);
+        else
+            std::fprintf(stderr, "Viking skipped: no --viking FILE (see the usage at the top of bench_peers.cpp)\n");
+        remeshing("fandisk", dir + "/fandisk.off", 30, 0.005, reps);
+        remeshing("pig", dir + "/pig.off", 40, 0.005, reps);
+    }
     return 0;
 }
