@@ -175,6 +175,7 @@ program test_loopsurf
     call check(loopsurf_evaluate(surf3, 1, 0d0, 0d0, r) == LS_OK, "eval at corner")
     call check(all(r(1:3) == xyz(:, 1)), "through the original point")
     call check(ls_surface_build_interpolating(net, 7_c_int, surf3) == LS_ERR_INVALID_ARGUMENT, "bad mode")
+    call ls_surface_free(surf3)
 
     ! A dirty file: the octahedron with two triangles turned, refused
     ! plainly and repaired with LS_LOAD_ORIENT, which says what it did.

@@ -391,33 +391,42 @@ impl<'a> Remeshing<'a> {
     /// triangles' smallest angles (the max–min angle criterion, which is
     /// Delaunay's in the plane). Returns the count.
     pub fn flip_for_angles(&mut self) -> usize {
-        let mut total = 0;
-        for _ in 0..8 {
-            let mut done = 0;
-            for h in 0..self.mesh.num_half_edges() {
-                if !self.inner_unlabelled(h) {
-                    continue;
-                }
-                let g = self.mesh.opposite(h);
-                let [a, b, c] = self.mesh.corners(h);
-                let d = self.mesh.origin(prev(g));
-                let old = self
-                    .worst_cosine([a, b, c], None)
-                    .max(self.worst_cosine([b, a, d], None));
-                let new = self
-                    .worst_cosine([a, d, c], None)
-                    .max(self.worst_cosine([d, b, c], None));
-                if new < old - 1e-9 && self.flip_allowed(h) {
-                    self.mesh.flip(h);
-                    done += 1;
-                }
-            }
-            total += done;
-            if done == 0 {
+        // A worklist: every edge once, then the outer sides of each flipped
+        // pair, which are the only edges whose criterion the flip changed.
+        let mut work: Vec<u32> = (0..self.mesh.num_half_edges()).rev().collect();
+        let mut done = 0;
+        let budget = 8 * work.len();
+        let mut visited = 0;
+        while let Some(h) = work.pop() {
+            visited += 1;
+            if visited > budget {
                 break;
             }
+            let h = match self.mesh.opposite(h) {
+                g if g != NONE && g < h => g,
+                _ => h,
+            };
+            if !self.inner_unlabelled(h) {
+                continue;
+            }
+            let g = self.mesh.opposite(h);
+            let [a, b, c] = self.mesh.corners(h);
+            let d = self.mesh.origin(prev(g));
+            let old = self
+                .worst_cosine([a, b, c], None)
+                .max(self.worst_cosine([b, a, d], None));
+            let new = self
+                .worst_cosine([a, d, c], None)
+                .max(self.worst_cosine([d, b, c], None));
+            if new < old - 1e-9 && self.flip_allowed(h) {
+                let (s, u) = (h - h % 3, g - g % 3);
+                self.mesh.flip(h);
+                // After the flip, s and s + 2, u and u + 1 are the quad's sides.
+                work.extend_from_slice(&[s, s + 2, u, u + 1]);
+                done += 1;
+            }
         }
-        total
+        done
     }
 
     /// A live inner unlabelled edge, taken once (cheap: tested first).
