@@ -137,7 +137,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         writeln!(out, "max deviation: {line}")?;
         writeln!(
             out,
-            "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20° ({} of them at a corner or between hard edges), {:.3}% below 10°",
+            "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20° ({} of them forced by features: at a corner, between hard edges, or with every corner on one), {:.3}% below 10°",
             quality.min_angle,
             quality.mean_min_angle,
             100.0 * quality.below_20,

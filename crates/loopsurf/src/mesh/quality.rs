@@ -32,7 +32,9 @@ pub struct MeshQuality {
     pub below_10: f64,
     /// Triangles below 20° whose smallest angle a feature forces: it sits
     /// between two hard edges, or at a corner (a vertex with other than two
-    /// hard edges), where the input's own sector may be that narrow.
+    /// hard edges), where the input's own sector may be that narrow, or all
+    /// three corners lie on hard edges (a triangle bridging crease curves
+    /// that come closer than its size).
     pub below_20_at_features: usize,
     /// Edge lengths (each edge once): smallest, 5th percentile, median,
     /// 95th percentile, largest.
@@ -128,7 +130,8 @@ impl SurfaceMesh {
                 }
                 let (v, a, b) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
                 let corner = degree[v as usize] != 0 && degree[v as usize] != 2;
-                corner || (hard.contains(&key(v, a)) && hard.contains(&key(v, b)))
+                let bridge = t.iter().all(|&u| degree[u as usize] > 0);
+                corner || bridge || (hard.contains(&key(v, a)) && hard.contains(&key(v, b)))
             })
             .count()
     }
