@@ -493,34 +493,8 @@ impl<'a> Remeshing<'a> {
                 self.placer.nudge(vertex, target, face)
             })
             .collect();
-        let mut moved = 0;
-        for (v, target) in moves.into_iter().enumerate() {
-            let Some(target) = target else { continue };
-            let v = v as u32;
-            let around: Vec<([u32; 3], u32)> = self
-                .mesh
-                .outgoing(v)
-                .map(|h| (self.mesh.corners(h), self.face(h)))
-                .collect();
-            // A shake may worsen angles, but not below 30°.
-            let worst = |moved| {
-                around
-                    .iter()
-                    .map(|&(ids, _)| self.worst_cosine(ids, moved))
-                    .fold(-1.0, f64::max)
-            };
-            let fair = worst(Some((v, &target))) <= worst(None).max(SHAKE_WORST_COSINE);
-            let ok = fair
-                && self.accept(
-                    around.iter().map(|&(ids, f)| (ids, f, Some((v, &target)))),
-                    around.iter().map(|&(ids, f)| (ids, f, None)),
-                );
-            if ok {
-                self.vertices[v as usize] = target;
-                moved += 1;
-            }
-        }
-        moved
+        // A shake may worsen angles, but not below 30°.
+        self.apply_moves(moves, Some(SHAKE_WORST_COSINE))
     }
 
     /// Moves every free vertex towards the area-weighted centroid of its
@@ -533,6 +507,14 @@ impl<'a> Remeshing<'a> {
             .into_par_iter()
             .map(|v| self.relaxed(v))
             .collect();
+        self.apply_moves(targets, None)
+    }
+
+    /// Applies moves (one per vertex, `None` for none) one by one against
+    /// the mesh as it is by then: each only if [`Remeshing::accept`] takes
+    /// its triangles and, with `floor`, none of them gets a smallest-angle
+    /// cosine above it unless it had one already. Returns the number moved.
+    fn apply_moves(&mut self, targets: Vec<Option<Vertex>>, floor: Option<f64>) -> usize {
         let mut moved = 0;
         for (v, target) in targets.into_iter().enumerate() {
             let Some(target) = target else { continue };
@@ -542,10 +524,18 @@ impl<'a> Remeshing<'a> {
                 .outgoing(v)
                 .map(|h| (self.mesh.corners(h), self.face(h)))
                 .collect();
-            let ok = self.accept(
-                around.iter().map(|&(ids, f)| (ids, f, Some((v, &target)))),
-                around.iter().map(|&(ids, f)| (ids, f, None)),
-            );
+            let worst = |moved| {
+                around
+                    .iter()
+                    .map(|&(ids, _)| self.worst_cosine(ids, moved))
+                    .fold(-1.0, f64::max)
+            };
+            let fair = floor.map_or(true, |f| worst(Some((v, &target))) <= worst(None).max(f));
+            let ok = fair
+                && self.accept(
+                    around.iter().map(|&(ids, f)| (ids, f, Some((v, &target)))),
+                    around.iter().map(|&(ids, f)| (ids, f, None)),
+                );
             if ok {
                 self.vertices[v as usize] = target;
                 moved += 1;
