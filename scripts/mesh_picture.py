@@ -87,15 +87,14 @@ def panel(points, tris, x0, title):
             continue  # faces away
         depth = sum(proj[i][2] for i in t[:3]) / 3
         xy = " ".join(
-            f"{x0 + PANEL / 2 + (proj[i][0] - cx) * scale:.1f},{PANEL / 2 + 30 - (proj[i][1] - cy) * scale:.1f}"
+            f"{x0 + PANEL / 2 + (proj[i][0] - cx) * scale:.0f},{PANEL / 2 + 30 - (proj[i][1] - cy) * scale:.0f}"
             for i in t[:3]
         )
         shapes.append((depth, xy, colour(angles[-1])))
     shapes.sort(key=lambda s: -s[0])
-    body = [
-        f'<polygon points="{xy}" fill="{fill}" stroke="#222" stroke-width="0.25"/>'
-        for _, xy, fill in shapes
-    ]
+    body = ['<g stroke="#222" stroke-width="0.25">']
+    body += [f'<polygon points="{xy}" fill="{fill}"/>' for _, xy, fill in shapes]
+    body.append("</g>")
     mean = sum(angles) / len(angles)
     label = f"{title}: {len(tris)} triangles, min {min(angles):.1f}°, mean-min {mean:.1f}°"
     body.append(f'<text x="{x0 + 10}" y="18" font-family="sans-serif" font-size="13">{label}</text>')
