@@ -58,6 +58,11 @@ pub const DEFAULT_ADAPT_CAP: f64 = 0.05;
 /// per edge (MMG's default hgrad).
 pub const DEFAULT_GRADATION: f64 = 1.3;
 
+/// The most triangles the remesher builds (as the chart mesher's default
+/// budget): a tolerance next to a singular point could otherwise ask for
+/// more memory than there is.
+const MAX_TRIANGLES: usize = 200_000_000;
+
 /// Rounds of split, collapse, flip and relax.
 const ROUNDS: usize = 5;
 
@@ -202,6 +207,12 @@ impl<'a> Remesher<'a> {
                 }
                 work.size = sizing.sizes(self.surface, &work.mesh, &work.vertices, &shrink);
                 work.split_long();
+                // Triangle slots (dead ones too) bound the memory.
+                if work.mesh.num_half_edges() as usize / 3 > MAX_TRIANGLES {
+                    return Err(Error::InvalidArgument(format!(
+                        "the requested density needs over {MAX_TRIANGLES} triangles: loosen the tolerance or raise the size"
+                    )));
+                }
                 work.collapse_short();
                 work.equalize_valences();
                 work.relax();
