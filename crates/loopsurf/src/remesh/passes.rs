@@ -353,6 +353,17 @@ impl<'a> Remeshing<'a> {
     /// Flips unlabelled edges where that brings the four vertices' valences
     /// nearer their ideal and both new triangles are valid. Returns the count.
     pub fn equalize_valences(&mut self) -> usize {
+        // Valences and ideals once, then kept up to date by each flip (its
+        // edge's ends lose one, the opposite corners gain one).
+        let (mut valence, ideal): (Vec<i64>, Vec<i64>) = (0..self.vertices.len() as u32)
+            .map(|v| {
+                if self.mesh.is_vertex_alive(v) {
+                    (self.mesh.valence(v) as i64, self.ideal_valence(v))
+                } else {
+                    (0, 0)
+                }
+            })
+            .unzip();
         let mut done = 0;
         for h in 0..self.mesh.num_half_edges() {
             if !self.inner_unlabelled(h) {
@@ -361,9 +372,8 @@ impl<'a> Remeshing<'a> {
             let g = self.mesh.opposite(h);
             let [a, b, c] = self.mesh.corners(h);
             let d = self.mesh.origin(prev(g));
-            let deviation = |v: u32, change: i64| {
-                (self.mesh.valence(v) as i64 + change - self.ideal_valence(v)).abs()
-            };
+            let deviation =
+                |v: u32, change: i64| (valence[v as usize] + change - ideal[v as usize]).abs();
             let before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
             let after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
             if after >= before {
@@ -381,6 +391,9 @@ impl<'a> Remeshing<'a> {
             }
             if self.flip_allowed(h) {
                 self.mesh.flip(h);
+                for (v, change) in [(a, -1), (b, -1), (c, 1), (d, 1)] {
+                    valence[v as usize] += change;
+                }
                 done += 1;
             }
         }
