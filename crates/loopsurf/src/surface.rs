@@ -8,7 +8,7 @@
 use crate::error::{Error, Result};
 use crate::eval::surface::{AtVertex, ChartEvaluator, Evaluator};
 use crate::net::ControlNet;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 /// How far outside its triangle a point may lie and still be accepted (then
@@ -73,6 +73,24 @@ pub struct Evaluation {
 }
 
 impl Evaluation {
+    /// The Gauss–Newton step towards a point at offset `d` from this one:
+    /// the parameter change (dv, dw) whose image in the tangent plane,
+    /// dv Xv + dw Xw, is nearest to `d`. `None` at a special vertex or
+    /// where Xv and Xw are (nearly) parallel.
+    pub(crate) fn tangent_step(&self, d: DVec3) -> Option<DVec2> {
+        let (a, b, c) = (
+            self.xv.length_squared(),
+            self.xv.dot(self.xw),
+            self.xw.length_squared(),
+        );
+        let det = a * c - b * b;
+        if self.at_special_vertex || !(det > 1e-24 * a * c) {
+            return None;
+        }
+        let (r, s) = (self.xv.dot(d), self.xw.dot(d));
+        Some(DVec2::new(c * r - b * s, a * s - b * r) / det)
+    }
+
     /// X Xv Xw Xvv Xvw Xww as 18 numbers (EGADS `EG_evaluate` order).
     pub fn record(&self) -> [f64; 18] {
         let mut out = [0.0; 18];

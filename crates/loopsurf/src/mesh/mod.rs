@@ -516,14 +516,10 @@ fn chord_error(chart: &mut Chart, q: DVec2, p: DVec3, enough: f64, tolerance: f6
             break;
         }
         let e = chart.eval(q.x, q.y)?;
-        let d = p - e.x;
-        let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
-        let det = a * c - b * b;
-        if e.at_special_vertex || det.is_nan() || det <= 1e-24 * a * c {
+        let Some(step) = e.tangent_step(p - e.x) else {
             break;
-        }
-        let (r, s) = (e.xv.dot(d), e.xw.dot(d));
-        let moved = nearest_in_triangle(q + DVec2::new(c * r - b * s, a * s - b * r) / det);
+        };
+        let moved = nearest_in_triangle(q + step);
         let distance = chart.point(moved.x, moved.y)?.distance(p);
         if distance >= best {
             break;

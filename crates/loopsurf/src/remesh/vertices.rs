@@ -97,18 +97,8 @@ impl<'a> Placer<'a> {
         let tri = v.at.tri as usize;
         let quick = || -> Option<Vertex> {
             let e = s.eval(tri, v.at.v, v.at.w).ok()?;
-            if e.at_special_vertex {
-                return None;
-            }
-            let d = target - e.x;
-            let (a, b, c) = (e.xv.length_squared(), e.xv.dot(e.xw), e.xw.length_squared());
-            let det = a * c - b * b;
-            if !(det > 1e-24 * a * c) {
-                return None;
-            }
-            let (r, q) = (e.xv.dot(d), e.xw.dot(d));
-            let (dv, dw) = ((c * r - b * q) / det, (a * q - b * r) / det);
-            let (nv, nw) = (v.at.v + dv, v.at.w + dw);
+            let step = e.tangent_step(target - e.x)?;
+            let (nv, nw) = (v.at.v + step.x, v.at.w + step.y);
             if !(nv > 0.0 && nw > 0.0 && nv + nw < 1.0) {
                 return None;
             }
