@@ -48,6 +48,20 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// fraction of the bounding-box diagonal.
 pub const DEFAULT_ADAPT_TOLERANCE: f64 = 1e-3;
 
+/// A relative chord tolerance checked (strictly between 0 and 1), or with
+/// curvature adaptation and none given, [`DEFAULT_ADAPT_TOLERANCE`]. Shared
+/// by the chart mesher and the remesher.
+pub(crate) fn checked_tolerance(tolerance: Option<f64>, adapt: bool) -> Result<Option<f64>> {
+    match tolerance {
+        Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => Err(Error::InvalidArgument(format!(
+            "tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"
+        ))),
+        Some(t) => Ok(Some(t)),
+        None if adapt => Ok(Some(DEFAULT_ADAPT_TOLERANCE)),
+        None => Ok(None),
+    }
+}
+
 /// Newton steps of the chord error's projection onto the surface, at most.
 const PROJECTION_STEPS: usize = 4;
 
@@ -196,14 +210,7 @@ impl<'a> Mesher<'a> {
             }
             _ => {}
         }
-        match self.tolerance {
-            Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => {
-                bad(format!("tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"))
-            }
-            Some(t) => Ok(Some(t)),
-            None if self.adapt => Ok(Some(DEFAULT_ADAPT_TOLERANCE)),
-            None => Ok(None),
-        }
+        checked_tolerance(self.tolerance, self.adapt)
     }
 
     /// Meshes the surface.

@@ -140,15 +140,8 @@ impl<'a> Remesher<'a> {
                 self.gradation
             ));
         }
-        let tolerance = match self.tolerance {
-            Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => {
-                return bad(format!("tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"))
-            }
-            Some(t) => Some(t),
-            None if self.adapt => Some(crate::mesh::DEFAULT_ADAPT_TOLERANCE),
-            None => None,
-        };
-        let tolerance = tolerance.map(|t| t * diagonal);
+        let tolerance =
+            crate::mesh::checked_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
         let sizing = match (self.size, self.adapt, tolerance) {
             (Some(h), false, _) => Sizing::Uniform(h),
             (size, _, Some(tol)) => {
