@@ -61,11 +61,36 @@ impl<'a> Remeshing<'a> {
         }
     }
 
+    /// An edge's length as the sizes measure it: its chord, or along a
+    /// curve the path through the curve's point midway in t. Where a
+    /// crease turns sharply between the ends, the chord is short but the
+    /// curve is not, and the edge must be split (and never collapsed) for
+    /// the mesh to follow the curve.
     fn length(&self, h: u32) -> f64 {
         let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
-        self.vertices[a as usize]
-            .x
-            .distance(self.vertices[b as usize].x)
+        let (xa, xb) = (self.vertices[a as usize].x, self.vertices[b as usize].x);
+        match self.curve_midpoint(h) {
+            Some(m) => xa.distance(m.x) + m.x.distance(xb),
+            None => xa.distance(xb),
+        }
+    }
+
+    /// The curve vertex midway in t between the ends of h, when h runs
+    /// along a curve: exact, and always between the ends (the point
+    /// nearest the chord's midpoint need not be, where the curve turns
+    /// sharply).
+    fn curve_midpoint(&self, h: u32) -> Option<Vertex> {
+        let label = self.mesh.edge_label[h as usize];
+        if label == NONE {
+            return None;
+        }
+        let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+        let (va, vb) = (&self.vertices[a as usize], &self.vertices[b as usize]);
+        let ta = self.placer.t_on(va, label, None);
+        let tb = self.placer.t_on(vb, label, ta);
+        let ta = self.placer.t_on(va, label, tb).or(ta);
+        let t = self.placer.mid_t(label, ta?, tb?);
+        self.placer.at_curve(label, t).ok()
     }
 
     /// Each live edge once: its half-edge with the larger opposite, or the
@@ -154,16 +179,8 @@ impl<'a> Remeshing<'a> {
     fn midpoint(&self, h: u32) -> Option<Vertex> {
         let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
         let (va, vb) = (&self.vertices[a as usize], &self.vertices[b as usize]);
-        let label = self.mesh.edge_label[h as usize];
-        if label != NONE {
-            let ta = self.placer.t_on(va, label, None);
-            let tb = self.placer.t_on(vb, label, ta);
-            let ta = self.placer.t_on(va, label, tb).or(ta);
-            // The parameter midpoint: exact, and always between the ends
-            // (the point nearest the chord's midpoint need not be, where
-            // the curve turns sharply).
-            let t = self.placer.mid_t(label, ta?, tb?);
-            return self.placer.at_curve(label, t).ok();
+        if self.mesh.edge_label[h as usize] != NONE {
+            return self.curve_midpoint(h);
         }
         let face = self.face(h);
         let guess = if va.is_free() {
@@ -313,11 +330,18 @@ impl<'a> Remeshing<'a> {
             .then(|| outgoing.last().map(|&l| self.mesh.origin(prev(l))))
             .flatten();
         let mut new = Vec::with_capacity(outgoing.len());
+        let gone = self.vertices[remove as usize].x;
         for &e in &outgoing {
             let y = self.mesh.dest(e);
-            if y != keep
-                && x.distance(self.vertices[y as usize].x) > SPLIT_ABOVE * self.target(keep, y)
-            {
+            // A new curve edge stands for the curve through `remove`: its
+            // length is that path's, not its chord's, or a crease's
+            // hairpin turn would be cut off by one short chord.
+            let length = if self.mesh.edge_label[e as usize] != NONE {
+                x.distance(gone) + gone.distance(self.vertices[y as usize].x)
+            } else {
+                x.distance(self.vertices[y as usize].x)
+            };
+            if y != keep && length > SPLIT_ABOVE * self.target(keep, y) {
                 return false;
             }
             let z = self.mesh.origin(prev(e));
@@ -332,9 +356,9 @@ impl<'a> Remeshing<'a> {
             return false;
         }
         if let Some(y) = border_last {
-            if y != keep
-                && x.distance(self.vertices[y as usize].x) > SPLIT_ABOVE * self.target(keep, y)
-            {
+            // The boundary through `remove`, as for curve edges above.
+            let length = x.distance(gone) + gone.distance(self.vertices[y as usize].x);
+            if y != keep && length > SPLIT_ABOVE * self.target(keep, y) {
                 return false;
             }
         }
