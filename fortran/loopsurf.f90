@@ -238,6 +238,24 @@ module loopsurf
             type(c_ptr), intent(out), optional :: tri_face
             real(c_double), intent(out), optional :: deviation
         end function
+        ! Curves another tool's linear mesh (0-based tris): nodes on the
+        ! surface, elements in gmsh's node order. Optional outputs: absent
+        ! skips one (NULL).
+        integer(c_int) function ls_curve(surface, nverts, xyz, ntris, tris, order, max_move, &
+                nnodes, nodes_xyz, node_tri, node_vw, elements, tri_face, largest_move, &
+                min_scaled_jacobian) bind(C, name="ls_curve")
+            import :: c_int, c_double, c_size_t, c_int32_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), value :: nverts, ntris
+            real(c_double), intent(in) :: xyz(*)
+            integer(c_int32_t), intent(in) :: tris(*)
+            integer(c_int), value :: order
+            real(c_double), value :: max_move
+            integer(c_size_t), intent(out) :: nnodes
+            type(c_ptr), intent(out) :: nodes_xyz, node_tri, node_vw, elements
+            integer(c_int32_t), intent(out), optional :: tri_face(*)
+            real(c_double), intent(out), optional :: largest_move, min_scaled_jacobian
+        end function
         integer(c_int) function ls_mesh_face_labels(surface, ntris, tri_chart, tri_face) &
                 bind(C, name="ls_mesh_face_labels")
             import :: c_int, c_size_t, c_int32_t, c_ptr

@@ -205,6 +205,46 @@ void ls_free_bytes(uint8_t *bytes, size_t n);
 // bytes give LS_ERR_BAD_STREAM.
 int ls_surface_load(const uint8_t *bytes, size_t n, ls_surface **out);
 
+// Curves a linear mesh made by another tool: its `nverts` vertices `xyz`
+// (3 × nverts) and `ntris` triangles `tris` (3 × ntris, 0-based,
+// counter-clockwise like the net). Every vertex goes to its certified
+// closest point on the surface, every triangle takes the model face of
+// its centroid's closest point, edges between two faces (or on the
+// boundary) onto their model curve, and each triangle becomes a Lagrange
+// triangle of order `order` (1 to 4) with every node on the surface.
+//
+// `max_move` (relative to the bounding-box diagonal; 0 for the default,
+// 0.01) bounds how far a vertex may move: a vertex farther from the
+// surface is refused with an error naming it (another model, other
+// units).
+//
+// Writes `nnodes`, `nodes_xyz` (3 × nnodes; the input vertices first, in
+// order), per node `node_tri` (nnodes) and `node_vw` (2 × nnodes) so
+// that `ls_evaluate(node_tri[i], vw[2i], vw[2i+1])` is node i, and
+// `elements` ((order + 1)(order + 2)/2 × ntris, 0-based node indices in
+// gmsh's order: 3 vertices, each edge's inner nodes from its first vertex
+// to its second, then the interior nodes; edge nodes shared by both
+// triangles of an edge). Release them with `ls_free_array`. Optional
+// (NULL to skip): `tri_face` (ntris, caller's array), the model face of
+// each triangle; `largest_move`, the largest vertex move in model units;
+// `min_scaled_jacobian`, the smallest scaled Jacobian (≤ 0: an element
+// folds; 1: straight). Nothing is written on failure.
+int ls_curve(const ls_surface *surface,
+             size_t nverts,
+             const double *xyz,
+             size_t ntris,
+             const int32_t *tris,
+             int order,
+             double max_move,
+             size_t *nnodes,
+             double **nodes_xyz,
+             int32_t **node_tri,
+             double **node_vw,
+             int32_t **elements,
+             int32_t *tri_face,
+             double *largest_move,
+             double *min_scaled_jacobian);
+
 // Meshes the limit surface (see `loopsurf mesh`). Density: `uniform` N ≥ 1
 // cuts every control edge into N segments, else `size` > 0 is a target
 // edge length in model units, else the tolerance alone decides (pass 0 for

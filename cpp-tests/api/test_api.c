@@ -1042,6 +1042,81 @@ static void test_streams(void) {
     ls_net_free(net);
 }
 
+/* ls_curve: a mesh made by ls_remesh on the octahedron, curved to P2 and
+   P3: the vertices stay (nothing moves), every node is ls_evaluate of its
+   (tri, v, w), each edge's inner nodes are shared by its two triangles,
+   and bad arguments are refused by name with the outputs untouched. */
+static void test_curve(void) {
+    ls_surface* surface = octahedron(NULL);
+    size_t nv = 0, nt = 0;
+    double *xyz = NULL, *vw = NULL;
+    int32_t *tris = NULL, *vtri = NULL;
+    EXPECT(ls_remesh(surface, 0.4, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
+    for (int order = 2; order <= 3; order++) {
+        size_t nn = 0;
+        double *nodes = NULL, *nvw = NULL, moved = -1, jac = -5;
+        int32_t *ntri = NULL, *elems = NULL;
+        int32_t* face = malloc(nt * sizeof *face);
+        EXPECT(ls_curve(surface, nv, xyz, nt, tris, order, 0, &nn, &nodes, &ntri, &nvw, &elems, face, &moved, &jac),
+               LS_OK);
+        size_t per = (size_t)(order + 1) * (order + 2) / 2;
+        CHECK(nn > nv && moved >= 0 && moved < 1e-12 && jac > 0 && jac <= 1);
+        for (size_t i = 0; i < nv; i++)
+            for (int d = 0; d < 3; d++) CHECK(nodes[3 * i + d] == xyz[3 * i + d]);
+        for (size_t i = 0; i < nn; i++) {
+            double r[18];
+            EXPECT(ls_evaluate(surface, ntri[i], nvw[2 * i], nvw[2 * i + 1], r), LS_OK);
+            for (int d = 0; d < 3; d++) CHECK(fabs(r[d] - nodes[3 * i + d]) < 1e-12);
+        }
+        /* Edge k of a triangle joins its vertices k and k+1; its inner
+           nodes follow the vertices. Both triangles of an edge list the
+           same nodes, in opposite orders. */
+        size_t inner = (size_t)order - 1, shared = 0;
+        for (size_t t = 0; t < nt; t++)
+            for (size_t u = t + 1; u < nt; u++)
+                for (int k = 0; k < 3; k++)
+                    for (int m = 0; m < 3; m++) {
+                        const int32_t* a = elems + per * t;
+                        const int32_t* b = elems + per * u;
+                        if (a[k] != b[(m + 1) % 3] || a[(k + 1) % 3] != b[m]) continue;
+                        shared++;
+                        for (size_t j = 0; j < inner; j++)
+                            CHECK(a[3 + k * inner + j] == b[3 + m * inner + inner - 1 - j]);
+                    }
+        CHECK(shared == 3 * nt / 2);
+        for (size_t t = 0; t < nt; t++) CHECK(face[t] == 0);
+        free(face);
+        ls_free_array(nodes);
+        ls_free_array(ntri);
+        ls_free_array(nvw);
+        ls_free_array(elems);
+    }
+    size_t nn = 77;
+    double* nodes = (double*)&SENTINEL;
+    double *nvw = NULL, moved = -1;
+    int32_t *ntri = NULL, *elems = NULL;
+    EXPECT(ls_curve(surface, nv, xyz, nt, tris, 5, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
+           LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "order") != NULL);
+    tris[4] = (int32_t)nv;
+    EXPECT(ls_curve(surface, nv, xyz, nt, tris, 2, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
+           LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "triangle 1") != NULL);
+    tris[4] = 0;
+    xyz[0] += 10;
+    EXPECT(ls_curve(surface, nv, xyz, nt, tris, 2, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
+           LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "vertex 0") != NULL);
+    EXPECT(ls_curve(NULL, nv, xyz, nt, tris, 2, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
+           LS_ERR_NULL_POINTER);
+    CHECK(nn == 77 && nodes == (double*)&SENTINEL && moved == -1);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_free_array(vtri);
+    ls_free_array(vw);
+    ls_surface_free(surface);
+}
+
 int main(int argc, char** argv) {
     const char* data_dir = argc > 1 ? argv[1] : ".";
     CHECK(strcmp(ls_last_error(), "") == 0); /* nothing failed yet on this thread */
@@ -1059,6 +1134,7 @@ int main(int argc, char** argv) {
     test_mesh();
     test_mesh_labels(data_dir);
     test_remesh(data_dir);
+    test_curve();
     test_adapt();
     test_streams();
     const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",

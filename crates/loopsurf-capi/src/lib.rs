@@ -18,6 +18,7 @@
 
 mod adapt;
 mod buffers;
+mod curve;
 mod mesh;
 mod model;
 mod net;
@@ -27,6 +28,7 @@ mod status;
 mod surface;
 
 pub use buffers::*;
+pub use curve::*;
 pub use mesh::*;
 pub use net::*;
 pub use project::*;

@@ -239,7 +239,12 @@ pub unsafe extern "C" fn ls_remesh(
 
 /// Borrows `per × n` values; NULL (unless n is 0) and sizes beyond memory
 /// are errors. No reference is made from `p` before the size is known good.
-unsafe fn slice<'a, T>(p: *const T, n: usize, per: usize, what: &str) -> Result<&'a [T], Fail> {
+pub(crate) unsafe fn slice<'a, T>(
+    p: *const T,
+    n: usize,
+    per: usize,
+    what: &str,
+) -> Result<&'a [T], Fail> {
     if n == 0 {
         return Ok(&[]);
     }

@@ -1,5 +1,6 @@
 //! `loopsurf mesh`: the surface mesher, its output files and its summary.
 
+use crate::curved_output::{self, CurvedFormat};
 use crate::input::{Input, SurfaceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use loopsurf::io::{self, DataArray};
@@ -48,9 +49,16 @@ pub struct Args {
     /// Skip re-measuring the chord error with snap (the true distance).
     #[arg(long)]
     no_verify: bool,
-    /// Output file; the format follows the extension (.vtu .obj .stl .tri .off .ply).
+    /// Output file; the format follows the extension (.msh .vtu .obj .stl .tri .off .ply).
     #[arg(long, short = 'o', value_name = "OUT")]
     output: PathBuf,
+    /// Curved Lagrange triangles of order K (1 to 4) with every node on the
+    /// surface; K > 1 needs a .msh (gmsh 4.1) or .vtu (VTK Lagrange) output.
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    order: usize,
+    /// Write .msh in gmsh's binary format instead of ASCII.
+    #[arg(long)]
+    binary: bool,
     /// Also write one `tri v w` line per output vertex, in output order.
     #[arg(long, value_name = "FILE")]
     write_params: Option<PathBuf>,
@@ -62,7 +70,7 @@ enum Adapt {
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
-    io::check_writable(&args.output)?;
+    curved_output::check_output(&args.output, args.order)?;
     let net = args.input.load()?;
     let surface = args.surface.build(&net)?;
     let start = Instant::now();
@@ -108,7 +116,16 @@ pub fn run(args: Args) -> Result<(), Error> {
         spinner.finish_and_clear();
         Some(d)
     };
-    write_output(&args.output, &surface, &mesh)?;
+    // A .msh and any order above 1 go out as Lagrange elements.
+    let curved = if args.order > 1 || CurvedFormat::of(&args.output) == Some(CurvedFormat::Msh) {
+        let curved = mesh.raise_order(&surface, args.order)?;
+        let validity = curved.validity();
+        curved_output::write_curved(&args.output, &curved, &validity, args.binary)?;
+        Some((curved, validity))
+    } else {
+        write_output(&args.output, &surface, &mesh)?;
+        None
+    };
     if let Some(path) = &args.write_params {
         write_params(path, &mesh)?;
     }
@@ -153,6 +170,9 @@ pub fn run(args: Args) -> Result<(), Error> {
             quality.edge_lengths[3],
             quality.edge_lengths[2]
         )?;
+        if let Some((curved, validity)) = &curved {
+            curved_output::summary(out, curved, validity)?;
+        }
         writeln!(out, "wrote {}", args.output.display())
     })
 }

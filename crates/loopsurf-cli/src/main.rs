@@ -2,6 +2,7 @@
 //! library results into text. No geometry lives here.
 
 mod cmd_adapt;
+mod cmd_curve;
 mod cmd_eval;
 mod cmd_hard_edges;
 mod cmd_info;
@@ -10,6 +11,7 @@ mod cmd_mesh;
 mod cmd_refine;
 mod cmd_snap;
 mod cmd_topology;
+mod curved_output;
 mod input;
 mod queries;
 
@@ -39,8 +41,11 @@ enum Command {
     Eval(cmd_eval::Args),
     /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
     Interpolate(cmd_interpolate::Args),
-    /// The surface mesher: a triangulation of the limit surface within a tolerance, hard edges kept.
+    /// The surface mesher: a triangulation of the limit surface within a tolerance, hard edges kept;
+    /// curved (P2–P4) with --order.
     Mesh(cmd_mesh::Args),
+    /// Curves another tool's linear mesh: its vertices snapped onto the surface, high-order nodes on it.
+    Curve(cmd_curve::Args),
     /// Closest points: reads `x y z` lines on stdin, writes `tri v w x y z distance` per line.
     Snap(cmd_snap::Args),
     /// The model of the hard features: faces, edges (curves) with their corners and control-vertex chains.
@@ -96,6 +101,7 @@ fn main() -> ExitCode {
         Command::Interpolate(args) => cmd_interpolate::run(args),
         Command::Snap(args) => cmd_snap::run(args),
         Command::Mesh(args) => cmd_mesh::run(args),
+        Command::Curve(args) => cmd_curve::run(args),
         Command::Topology(args) => cmd_topology::run(args),
     };
     match result {

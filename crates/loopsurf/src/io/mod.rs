@@ -18,6 +18,8 @@ use glam::DVec3;
 use crate::error::{Error, Result};
 
 mod cart3d;
+mod lagrange;
+mod msh;
 mod obj;
 mod off;
 mod ply;
@@ -27,12 +29,19 @@ mod text;
 mod vtu;
 
 pub use cart3d::{read_tri, write_tri, write_tri_with_components};
+pub use lagrange::{nodes_per_triangle, LagrangeMesh, MAX_LAGRANGE_ORDER};
+pub use msh::{
+    parse_msh, read_msh, write_msh, MshElement, MshMesh, MshNodeData, MshPhysicalName, PARAMS_VIEW,
+};
 pub use obj::{read_obj, write_obj};
 pub use off::{read_off, write_off};
 pub use ply::{read_ply, write_ply};
 pub use polygon::Polygon;
 pub use stl::{read_stl, write_stl};
-pub use vtu::{write_vtu, write_vtu_with_lines, DataArray};
+pub use vtu::{
+    parse_vtu, read_vtu, write_vtu, write_vtu_lagrange, write_vtu_with_lines, DataArray, VtuArray,
+    VtuMesh,
+};
 
 /// What a reader found in a file, before any validation.
 #[derive(Debug, Clone, Default)]
@@ -243,7 +252,7 @@ fn finish(mut w: impl Write, path: &Path) -> Result<()> {
 
 /// Rejects triangles that refer past the point array: writers would
 /// otherwise produce files that other programs crash on.
-fn check_tris(points: &[DVec3], tris: &[[u32; 3]]) -> Result<()> {
+pub(crate) fn check_tris(points: &[DVec3], tris: &[[u32; 3]]) -> Result<()> {
     for (t, tri) in tris.iter().enumerate() {
         if let Some(&i) = tri.iter().find(|&&i| i as usize >= points.len()) {
             return Err(Error::InvalidArgument(format!(

@@ -26,11 +26,13 @@
 //! surface points.
 
 pub(crate) mod density;
+pub mod high_order;
 pub mod labels;
 mod pattern;
 mod quality;
 
 pub use crate::geometry::min_angle;
+pub use high_order::{onto_surface, CurvedMesh, OntoSurface};
 pub use labels::{curve_edges, face_labels, CurveEdges};
 pub use quality::{MeshQuality, TriangleQuality};
 

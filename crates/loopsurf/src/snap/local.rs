@@ -133,6 +133,22 @@ fn eval_at(chart: &mut Chart, uv: DVec2) -> Evaluation {
 /// steepest triangle of the vertex's fan; the walk ends where a hop gains
 /// nothing (a minimum on the edge itself, as on a crease) or at a boundary.
 pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -> (Snap, bool) {
+    descend_walking(surface, p, tri, v, w, false)
+}
+
+/// [`descend`], never walking out of the model face of `tri` when
+/// `in_face` is set: across a hard edge the walk stops on it, so minima on
+/// the face's curves are constrained minima of the face.
+pub(crate) fn descend_walking(
+    surface: &Surface,
+    p: DVec3,
+    tri: usize,
+    v: f64,
+    w: f64,
+    in_face: bool,
+) -> (Snap, bool) {
+    let face_of = surface.model().face_of_triangle();
+    let face = face_of[tri];
     let mut start = Start::new(surface, tri, DVec2::new(v, w));
     let mut best: Option<(Snap, bool)> = None;
     // Whether this solve goes on with a step carried into its triangle.
@@ -173,7 +189,8 @@ pub(crate) fn descend(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -
             None => (0..3)
                 .find(|&k| (end - CORNERS[k]).abs().max_element() < 1e-6)
                 .and_then(|k| downhill_around(surface, p, tri, k)),
-        };
+        }
+        .filter(|&(next, _)| !in_face || face_of[next] == face);
         match next {
             Some((next, next_uv)) => start = Start::new(surface, next, next_uv),
             None => break,

@@ -26,6 +26,19 @@ impl Surface {
     /// ([`Error::BadParameter`](crate::Error::BadParameter)); round-off
     /// outside it is clamped.
     pub fn project(&self, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
+        self.project_walking(p, tri, v, w, false)
+    }
+
+    /// [`Surface::project`] that stays in the model face of the guess's
+    /// triangle: where the descent would cross a hard edge it stops on it,
+    /// so the answer is the nearest local minimum over that face alone
+    /// (its curves included). A curved element's node must lie on the
+    /// element's own face, even where the other side of a crease is nearer.
+    pub fn project_in_face(&self, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
+        self.project_walking(p, tri, v, w, true)
+    }
+
+    fn project_walking(&self, p: DVec3, tri: usize, v: f64, w: f64, in_face: bool) -> Result<Snap> {
         check_point(p)?;
         // Checked like `snap_near`'s guess, without evaluating it: the
         // descent's first evaluation is the guess's.
@@ -36,6 +49,6 @@ impl Surface {
         } else {
             (v, w)
         };
-        Ok(local::descend(self, p, tri, v, w).0)
+        Ok(local::descend_walking(self, p, tri, v, w, in_face).0)
     }
 }

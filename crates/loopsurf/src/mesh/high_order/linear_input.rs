@@ -1,0 +1,224 @@
+//! A linear surface mesh made by another tool, put onto the surface so that
+//! it can be curved (`loopsurf curve`): the usual high-order workflow is a
+//! linear mesh from gmsh, raised to order 2 afterwards.
+//!
+//! 1. Every vertex goes to its certified closest point. A vertex farther
+//!    than the allowed move is refused by name: a mesh of another model, or
+//!    in other units, must not be curved onto this one.
+//! 2. Every triangle takes the face of the closest point to its centroid.
+//! 3. An edge between triangles of two faces, or on the boundary, lies on a
+//!    model curve: the one between those two faces (the nearest, where
+//!    several are). Its vertices move onto that curve (certified curve
+//!    snap), and a vertex on edges of two curves onto the nearest corner of
+//!    theirs, so that hard edges become chains of output edges.
+//!
+//! A dart's crease has one face on both sides, so edges along it are not
+//! found and their nodes are placed like any others.
+
+use super::super::SurfaceMesh;
+use crate::error::{Error, Result};
+use crate::refine::SurfacePoint;
+use crate::surface::Surface;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// The largest vertex move allowed by default, relative to the net's
+/// bounding-box diagonal.
+pub const DEFAULT_MAX_MOVE: f64 = 0.01;
+
+/// A linear mesh put onto the surface.
+#[derive(Debug, Clone)]
+pub struct OntoSurface {
+    /// The mesh, its vertices on the surface, with faces and hard edges.
+    pub mesh: SurfaceMesh,
+    /// The largest distance a vertex moved (model units) and that vertex.
+    pub largest_move: f64,
+    pub largest_move_vertex: usize,
+}
+
+/// `points` and `triangles` (0-based, counter-clockwise like the net) put
+/// onto `surface` as the module doc describes; `max_move` is the largest
+/// move allowed, relative to the diagonal.
+pub fn onto_surface(
+    surface: &Surface,
+    points: &[DVec3],
+    triangles: &[[u32; 3]],
+    max_move: f64,
+) -> Result<OntoSurface> {
+    if !(max_move.is_finite() && max_move > 0.0) {
+        return Err(Error::InvalidArgument(format!(
+            "max move {max_move}: must be positive (a fraction of the diagonal)"
+        )));
+    }
+    if triangles.is_empty() {
+        return Err(Error::InvalidArgument("the mesh has no triangle".into()));
+    }
+    crate::io::check_tris(points, triangles)?;
+    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "vertex {i} {:?} is not finite",
+            points[i].to_array()
+        )));
+    }
+    let diagonal = surface.net().bbox_diagonal();
+    let allowed = max_move * diagonal;
+    let refuse = |i: usize, d: f64, what: &str| {
+        Error::InvalidArgument(format!(
+            "vertex {i} at {:?} is {d:.3e} from the {what} ({:.2e} of the diagonal), more than the allowed move {max_move:e}: is it a mesh of this model, in the same units?",
+            points[i].to_array(),
+            d / diagonal
+        ))
+    };
+
+    let snaps = points
+        .par_iter()
+        .map(|&p| surface.closest_point(p))
+        .collect::<Result<Vec<_>>>()?;
+    let mut params: Vec<SurfacePoint> = snaps
+        .iter()
+        .map(|s| SurfacePoint {
+            tri: s.tri as u32,
+            v: s.v,
+            w: s.w,
+        })
+        .collect();
+    let mut moved: Vec<DVec3> = snaps.iter().map(|s| s.point).collect();
+    if let Some(i) = (0..points.len()).find(|&i| snaps[i].distance > allowed) {
+        return Err(refuse(i, snaps[i].distance, "surface"));
+    }
+
+    let face_of = surface.model().face_of_triangle();
+    let faces = triangles
+        .par_iter()
+        .map(|tri| {
+            let centroid = tri.iter().map(|&i| moved[i as usize]).sum::<DVec3>() / 3.0;
+            let p = params[tri[0] as usize];
+            let snap = surface.snap_near(centroid, p.tri as usize, p.v, p.w)?;
+            Ok(face_of[snap.tri])
+        })
+        .collect::<Result<Vec<u32>>>()?;
+
+    // Edges with their triangles' faces; a second side arrives later.
+    let mut sides: HashMap<(u32, u32), [Option<u32>; 2]> = HashMap::new();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let entry = sides.entry((a.min(b), a.max(b))).or_insert([None, None]);
+            entry[usize::from(entry[0].is_some())] = Some(faces[t]);
+        }
+    }
+    let mut feature_edges: Vec<((u32, u32), [Option<u32>; 2])> =
+        sides.into_iter().filter(|(_, f)| f[0] != f[1]).collect();
+    feature_edges.sort_unstable_by_key(|e| e.0);
+
+    // The curve of each feature edge, and the curves at each vertex.
+    let curves = surface.model().curves();
+    let mut vertex_curves: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
+    for &((a, b), mut pair) in &feature_edges {
+        pair.sort();
+        let candidates: Vec<u32> = (0..curves.len() as u32)
+            .filter(|&c| {
+                let mut f = curves[c as usize].faces;
+                f.sort();
+                f == pair
+            })
+            .collect();
+        let mid = 0.5 * (moved[a as usize] + moved[b as usize]);
+        let curve = match candidates.as_slice() {
+            [] => {
+                return Err(Error::InvalidArgument(format!(
+                    "edge ({a}, {b}) separates faces {:?} and {:?}, which no curve of the model separates: are the hard edges flagged as when this mesh was made (--hard-angle)?",
+                    pair[0], pair[1]
+                )))
+            }
+            [c] => *c,
+            _ => {
+                let mut best = (f64::INFINITY, candidates[0]);
+                for &c in &candidates {
+                    let d = surface.curve_closest_point(c as usize, mid)?.distance;
+                    if d < best.0 {
+                        best = (d, c);
+                    }
+                }
+                best.1
+            }
+        };
+        for v in [a, b] {
+            let list = &mut vertex_curves[v as usize];
+            if !list.contains(&curve) {
+                list.push(curve);
+            }
+        }
+    }
+
+    // Vertices onto their curve, or their corner.
+    let net = surface.net();
+    let topo = net.topology();
+    let placed = vertex_curves
+        .par_iter()
+        .enumerate()
+        .filter(|(_, c)| !c.is_empty())
+        .map(|(i, list)| {
+            let p = points[i];
+            if let [c] = list.as_slice() {
+                let snap = surface.curve_closest_point(*c as usize, p)?;
+                let (_, sp) = surface.curve_surface_points(*c as usize, snap.t)?[0];
+                return Ok((i, sp));
+            }
+            let mut best: Option<(f64, u32)> = None;
+            for &c in list {
+                for corner in curves[c as usize].corners.into_iter().flatten() {
+                    let x = surface.model().corners()[corner as usize];
+                    let d = (net.points()[x as usize] - p).length();
+                    if best.map_or(true, |b| d < b.0) {
+                        best = Some((d, x));
+                    }
+                }
+            }
+            let Some((_, x)) = best else {
+                return Err(Error::InvalidArgument(format!(
+                    "vertex {i} lies on edges of curves {list:?}, which meet at no corner"
+                )));
+            };
+            let tri = topo.fan(x as usize)[0];
+            let k = net.triangles()[tri as usize]
+                .iter()
+                .position(|&y| y == x)
+                .expect("a fan triangle holds its vertex");
+            let (v, w) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k];
+            Ok((i, SurfacePoint { tri, v, w }))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    for (i, sp) in placed {
+        params[i] = sp;
+        moved[i] = surface.point(sp.tri as usize, sp.v, sp.w)?;
+    }
+    let (largest_move_vertex, largest_move) = (0..points.len())
+        .map(|i| (i, (moved[i] - points[i]).length()))
+        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    if largest_move > allowed {
+        return Err(refuse(
+            largest_move_vertex,
+            largest_move,
+            "nearest model curve or corner",
+        ));
+    }
+
+    let edges = super::super::labels::curve_edges(surface, &params, triangles)?;
+    Ok(OntoSurface {
+        mesh: SurfaceMesh {
+            points: moved,
+            triangles: triangles.to_vec(),
+            params,
+            charts: Vec::new(),
+            faces,
+            hard_edges: edges.pairs,
+            hard_edge_curves: edges.curves,
+            deviation: None,
+            diagonal,
+        },
+        largest_move,
+        largest_move_vertex,
+    })
+}

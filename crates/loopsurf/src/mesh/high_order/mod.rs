@@ -1,0 +1,391 @@
+//! Curved (Lagrange P2–P4) surface meshes whose every node lies exactly on
+//! the limit surface, for DG and high-order FE codes that need curved
+//! boundary elements (seed 000 §1).
+//!
+//! An element's map is the Lagrange interpolant of exact surface points at
+//! its nodes ([`lagrange`] has the node layout, gmsh's). The nodes are
+//! placed in one of three ways, in this order of preference:
+//!
+//! 1. **On a crease or boundary curve**, an edge's nodes are the curve at
+//!    equispaced curve parameters t between its ends. The crease limit
+//!    curve is exact and shares its parameterisation with the surface
+//!    along each control edge, so this is also what 2 gives there.
+//! 2. **In the element's chart**, for the chart mesher's elements (each
+//!    inside one control triangle): equispaced in the chart's (v, w). The
+//!    surface is one polynomial piece per control triangle away from
+//!    special vertices, so such an element interpolates a polynomial and
+//!    converges at the full order k + 1 (a regular patch is quartic: P4
+//!    elements reproduce it to round-off).
+//! 3. **Otherwise** (the remesher's elements, and meshes made elsewhere,
+//!    span several control triangles) the node is the closest point of the
+//!    surface to the corresponding node of the straight-sided triangle:
+//!    local projection from the nearest vertex, and the certified snap
+//!    where the projection ends farther than a quarter of the edge. The
+//!    element map then interpolates the closest-point map, which is smooth
+//!    wherever the surface is, so the orders hold there too. The
+//!    parameters are not used here even where the ends share a control
+//!    triangle: next to an irregular vertex the parameterisation is so
+//!    uneven that a parameter midpoint can lie an edge length off the
+//!    chord. The projection never leaves the element's face
+//!    ([`Surface::project_in_face`]): across a crease the other face may
+//!    be nearer, and a node there would fold the element.
+//!
+//! Every edge's nodes are computed once and shared by the two triangles of
+//! the edge, so the curved mesh is conforming bit for bit.
+
+pub mod lagrange;
+mod linear_input;
+mod validity;
+
+pub use lagrange::{nodes_per_triangle, MAX_ORDER};
+pub use linear_input::{onto_surface, OntoSurface, DEFAULT_MAX_MOVE};
+pub use validity::{Distance, Validity};
+
+use super::{reparameterize, SurfaceMesh};
+use crate::error::{Error, Result};
+use crate::refine::SurfacePoint;
+use crate::surface::{Surface, PARAMETER_TOLERANCE};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// A curved surface mesh of Lagrange triangles.
+#[derive(Debug, Clone)]
+pub struct CurvedMesh {
+    /// The polynomial order k (1 to [`MAX_ORDER`]).
+    pub order: usize,
+    /// Node positions, each exactly the surface at its parameters: first the
+    /// linear mesh's vertices in their order, then the edge nodes, then the
+    /// interior nodes.
+    pub nodes: Vec<DVec3>,
+    /// Per node: a control triangle and (v, w) where `eval` gives it.
+    pub params: Vec<SurfacePoint>,
+    /// [`nodes_per_triangle`]`(order)` node indices per triangle, in gmsh's
+    /// order ([`lagrange`]), triangles in the linear mesh's order.
+    pub triangles: Vec<u32>,
+    /// Per triangle: its model face.
+    pub faces: Vec<u32>,
+    /// The hard edges as Lagrange curves of `order + 1` nodes each: their
+    /// two ends in the curve's direction, then the inner nodes from the
+    /// first end to the second (gmsh's and VTK's line order).
+    pub lines: Vec<u32>,
+    /// Per line: its model curve.
+    pub line_curves: Vec<u32>,
+    /// Nodes at model corners, with the corner id.
+    pub corners: Vec<(u32, u32)>,
+    /// How many of the nodes are the linear mesh's vertices.
+    pub vertices: usize,
+    /// The net's bounding-box diagonal, for relative figures.
+    pub diagonal: f64,
+}
+
+impl CurvedMesh {
+    /// Nodes per triangle.
+    pub fn nodes_per_triangle(&self) -> usize {
+        nodes_per_triangle(self.order)
+    }
+
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Whether there is no triangle.
+    pub fn is_empty(&self) -> bool {
+        self.faces.is_empty()
+    }
+
+    /// The node indices of triangle `t`, in gmsh's order.
+    pub fn element(&self, t: usize) -> &[u32] {
+        let n = self.nodes_per_triangle();
+        &self.triangles[n * t..n * (t + 1)]
+    }
+
+    /// The mesh as the file writers take it.
+    pub fn to_lagrange(&self) -> crate::io::LagrangeMesh {
+        crate::io::LagrangeMesh {
+            order: self.order,
+            nodes: self.nodes.clone(),
+            triangles: self.triangles.clone(),
+            faces: self.faces.clone(),
+            lines: self.lines.clone(),
+            line_curves: self.line_curves.clone(),
+            corners: self.corners.clone(),
+            params: self.params.iter().map(|p| (p.tri, p.v, p.w)).collect(),
+        }
+    }
+}
+
+/// A node found: its position and parameters.
+type Node = (DVec3, SurfacePoint);
+
+impl SurfaceMesh {
+    /// This mesh with every triangle raised to a Lagrange triangle of order
+    /// `order` (1 to [`MAX_ORDER`]) on the exact surface; see the module
+    /// doc for where the nodes go. The vertices stay the first nodes, in
+    /// order, bit for bit.
+    pub fn raise_order(&self, surface: &Surface, order: usize) -> Result<CurvedMesh> {
+        if !(1..=MAX_ORDER).contains(&order) {
+            return Err(Error::InvalidArgument(format!(
+                "order {order}: must be 1 to {MAX_ORDER}"
+            )));
+        }
+        let curve_edges = self.curve_edges(surface)?;
+        let k = order;
+        let placer = Placer {
+            surface,
+            mesh: self,
+        };
+
+        // Unique edges, each from its lower vertex to its higher.
+        let mut sides: Vec<(u64, u32)> = Vec::with_capacity(3 * self.triangles.len());
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for s in 0..3 {
+                let (a, b) = (tri[s] as u64, tri[(s + 1) % 3] as u64);
+                sides.push(((a.min(b) << 32) | a.max(b), t as u32));
+            }
+        }
+        sides.sort_unstable();
+        sides.dedup_by_key(|s| s.0);
+        let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
+        let edge_of = |a: u32, b: u32| {
+            sides
+                .binary_search_by_key(&key(a, b), |s| s.0)
+                .expect("every side was listed")
+        };
+        // Hard edges: their curve and the t of the lower and higher vertex.
+        let mut hard: Vec<Option<(u32, [f64; 2])>> = vec![None; sides.len()];
+        for ((&[a, b], &c), &[ta, tb]) in curve_edges
+            .pairs
+            .iter()
+            .zip(&curve_edges.curves)
+            .zip(&curve_edges.params)
+        {
+            let n = surface.model().curves()[c as usize].len() as f64;
+            // A closed curve's edge across its start runs from t near n
+            // to t near 0: continue past n instead.
+            let tb = if tb < ta { tb + n } else { tb };
+            let ts = if a < b { [ta, tb] } else { [tb, ta] };
+            hard[edge_of(a, b)] = Some((c, ts));
+        }
+
+        let inner = k.saturating_sub(1);
+        let edge_nodes: Vec<Node> = sides
+            .par_iter()
+            .zip(hard.par_iter())
+            .map(|(&(key, t), hard)| {
+                let (a, b) = ((key >> 32) as u32, key as u32);
+                (1..k)
+                    .map(|i| {
+                        let s = i as f64 / k as f64;
+                        match hard {
+                            Some((c, [ta, tb])) => placer.on_curve(*c, ta + s * (tb - ta)),
+                            None => placer.between(&[a, b], &[1.0 - s, s], t as usize),
+                        }
+                    })
+                    .collect::<Result<Vec<Node>>>()
+            })
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect();
+
+        let lattice = lagrange::lattice(k);
+        let interior = &lattice[(3 * k).min(lattice.len())..];
+        let interior_nodes: Vec<Node> = (0..self.triangles.len())
+            .into_par_iter()
+            .map(|t| {
+                let tri = self.triangles[t];
+                interior
+                    .iter()
+                    .map(|&[i, j]| {
+                        let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
+                        placer.between(&tri, &[1.0 - x - y, x, y], t)
+                    })
+                    .collect::<Result<Vec<Node>>>()
+            })
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect();
+
+        let nv = self.points.len();
+        let edge_base = nv;
+        let interior_base = nv + edge_nodes.len();
+        let per = nodes_per_triangle(k);
+        let mut triangles = Vec::with_capacity(per * self.triangles.len());
+        for (t, tri) in self.triangles.iter().enumerate() {
+            triangles.extend(tri);
+            for s in 0..3 {
+                let (a, b) = (tri[s], tri[(s + 1) % 3]);
+                let first = edge_base + edge_of(a, b) * inner;
+                let ids = (0..inner).map(|i| (first + i) as u32);
+                if a < b {
+                    triangles.extend(ids);
+                } else {
+                    triangles.extend(ids.rev());
+                }
+            }
+            let first = interior_base + t * interior.len();
+            triangles.extend((first..first + interior.len()).map(|i| i as u32));
+        }
+        let mut lines = Vec::with_capacity((k + 1) * curve_edges.pairs.len());
+        for &[a, b] in &curve_edges.pairs {
+            lines.extend([a, b]);
+            let first = edge_base + edge_of(a, b) * inner;
+            let ids = (0..inner).map(|i| (first + i) as u32);
+            if a < b {
+                lines.extend(ids);
+            } else {
+                lines.extend(ids.rev());
+            }
+        }
+
+        let mut nodes = self.points.clone();
+        let mut params = self.params.clone();
+        for (x, p) in edge_nodes.into_iter().chain(interior_nodes) {
+            nodes.push(x);
+            params.push(p);
+        }
+        Ok(CurvedMesh {
+            order: k,
+            nodes,
+            params,
+            triangles,
+            faces: self.faces.clone(),
+            lines,
+            line_curves: curve_edges.curves,
+            corners: corners(surface, &self.params),
+            vertices: nv,
+            diagonal: self.diagonal,
+        })
+    }
+}
+
+/// The vertices at model corners, with their corner ids.
+fn corners(surface: &Surface, params: &[SurfacePoint]) -> Vec<(u32, u32)> {
+    let net = surface.net();
+    let corners = surface.model().corners();
+    params
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let weights = [1.0 - p.v - p.w, p.v, p.w];
+            let live: Vec<usize> = (0..3)
+                .filter(|&k| weights[k].abs() > PARAMETER_TOLERANCE)
+                .collect();
+            let &[k] = live.as_slice() else {
+                return None;
+            };
+            let vertex = net.triangles()[p.tri as usize][k];
+            let id = corners.binary_search(&vertex).ok()?;
+            Some((i as u32, id as u32))
+        })
+        .collect()
+}
+
+/// Places nodes of one linear mesh on the surface.
+struct Placer<'a> {
+    surface: &'a Surface,
+    mesh: &'a SurfaceMesh,
+}
+
+impl Placer<'_> {
+    /// The curve point at parameter t (wrapped around a closed curve), with
+    /// its parameters on the first face beside it.
+    fn on_curve(&self, curve: u32, t: f64) -> Result<Node> {
+        let c = &self.surface.model().curves()[curve as usize];
+        let n = c.len() as f64;
+        let t = if c.is_closed() { t.rem_euclid(n) } else { t };
+        let sides = self.surface.curve_surface_points(curve as usize, t)?;
+        let p = sides[0].1;
+        Ok((self.surface.point(p.tri as usize, p.v, p.w)?, p))
+    }
+
+    /// The point with barycentric `weights` on `vertices` (of triangle
+    /// `t`): equispaced in one control triangle's parameters when all the
+    /// vertices can be expressed in it, else the closest point to the
+    /// straight-sided point (module doc, 2 and 3), in `t`'s face either way.
+    fn between(&self, vertices: &[u32], weights: &[f64], t: usize) -> Result<Node> {
+        let mesh = self.mesh;
+        let surface = self.surface;
+        let net = surface.net();
+        let face_of = surface.model().face_of_triangle();
+        let face = mesh.faces[t];
+        let params: Vec<SurfacePoint> = vertices.iter().map(|&i| mesh.params[i as usize]).collect();
+        let chart = mesh.charts.get(t).copied();
+        let in_chart = chart.and_then(|c| {
+            params
+                .iter()
+                .map(|&p| reparameterize(net, p, c))
+                .collect::<Option<Vec<(f64, f64)>>>()
+                .map(|uv| (c, uv))
+        });
+        if let Some((c, uv)) = in_chart {
+            let (mut v, mut w) = (0.0, 0.0);
+            for (&(pv, pw), &s) in uv.iter().zip(weights) {
+                v += s * pv;
+                w += s * pw;
+            }
+            let p = SurfacePoint { tri: c, v, w };
+            return Ok((surface.point(c as usize, v, w)?, p));
+        }
+        let flat: DVec3 = vertices
+            .iter()
+            .zip(weights)
+            .map(|(&i, &s)| s * mesh.points[i as usize])
+            .sum();
+        // The guess: the heaviest vertex that can be seen from the face.
+        let mut order: Vec<usize> = (0..weights.len()).collect();
+        order.sort_by(|&a, &b| weights[b].total_cmp(&weights[a]));
+        let guess = order
+            .iter()
+            .find_map(|&j| in_face(surface, params[j], face))
+            .ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "triangle {t}: none of its vertices {vertices:?} lies on its face {face}"
+                ))
+            })?;
+        let shortest = (0..vertices.len())
+            .map(|j| {
+                let (a, b) = (vertices[j], vertices[(j + 1) % vertices.len()]);
+                (mesh.points[a as usize] - mesh.points[b as usize]).length()
+            })
+            .fold(f64::INFINITY, f64::min);
+        let (tri, v, w) = (guess.tri as usize, guess.v, guess.w);
+        let mut snap = surface.project_in_face(flat, tri, v, w)?;
+        if snap.distance > 0.25 * shortest {
+            // A far local minimum: the global one, if it is on this face.
+            let global = surface.snap_near(flat, tri, v, w)?;
+            if face_of[global.tri] == face && global.distance < snap.distance {
+                snap = global;
+            }
+        }
+        let p = SurfacePoint {
+            tri: snap.tri as u32,
+            v: snap.v,
+            w: snap.w,
+        };
+        Ok((snap.point, p))
+    }
+}
+
+/// Surface point `p` seen from a control triangle of model face `face`:
+/// itself, or re-expressed in a triangle of the face around its control
+/// vertices when it lies on a crease or corner. `None` when no triangle of
+/// the face holds it.
+fn in_face(surface: &Surface, p: SurfacePoint, face: u32) -> Option<SurfacePoint> {
+    let face_of = surface.model().face_of_triangle();
+    if face_of[p.tri as usize] == face {
+        return Some(p);
+    }
+    let net = surface.net();
+    let topo = net.topology();
+    net.triangles()[p.tri as usize]
+        .iter()
+        .flat_map(|&x| topo.fan(x as usize))
+        .filter(|&&c| face_of[c as usize] == face)
+        .find_map(|&c| {
+            let (v, w) = reparameterize(net, p, c)?;
+            Some(SurfacePoint { tri: c, v, w })
+        })
+}
