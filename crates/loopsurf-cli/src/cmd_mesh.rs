@@ -40,7 +40,8 @@ pub struct Args {
     #[arg(long, value_name = "G", default_value_t = loopsurf::remesh::DEFAULT_GRADATION)]
     gradation: f64,
     /// Let the density follow curvature, bounded by the tolerance (1e-3 if
-    /// none is given) and, with --size, by the edge length.
+    /// none is given) and, with --size, by the edge length. The remesher's
+    /// default when neither --size nor --tolerance is given.
     #[arg(long, value_enum, value_name = "HOW")]
     adapt: Option<Adapt>,
     /// Skip the max–min angle edge swaps (--charts).
@@ -78,8 +79,11 @@ pub fn run(args: Args) -> Result<(), Error> {
     let mesh = if charts {
         chart_mesh(&args, &surface)?
     } else {
+        // With no density at all, the curvature-adaptive mesh at the
+        // default tolerance: the mesh a user asking for "a mesh" expects.
+        let adapt = args.adapt.is_some() || (args.size.is_none() && args.tolerance.is_none());
         let mut remesher = Remesher::new(&surface)
-            .adapt_curvature(args.adapt.is_some())
+            .adapt_curvature(adapt)
             .gradation(args.gradation);
         if let Some(h) = args.size {
             remesher = remesher.size(h);
@@ -95,7 +99,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         // not meet the tolerance; say so rather than pass it silently.
         let wanted = args
             .tolerance
-            .or(args.adapt.map(|_| loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE));
+            .or(adapt.then_some(loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE));
         if let (Some(eps), Some(d)) = (wanted, mesh.deviation) {
             if d > eps * mesh.diagonal {
                 eprintln!(
