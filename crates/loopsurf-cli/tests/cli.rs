@@ -493,7 +493,12 @@ fn mesh_rejects_bad_options_with_one_line() {
         args.extend_from_slice(extra);
         loopsurf(&args)
     };
-    assert_clean_failure(&mesh(&[]), "no density");
+    assert_clean_failure(&mesh(&["--charts"]), "no density");
+    assert_clean_failure(
+        &mesh(&["--size", "0.5", "--order", "2"]),
+        "order 2 needs a .msh or .vtu",
+    );
+    assert_clean_failure(&mesh(&["--size", "0.5", "--order", "5"]), "order 5");
     assert_clean_failure(&mesh(&["--tolerance", "0"]), "tolerance 0");
     assert_clean_failure(&mesh(&["--tolerance", "-1e-3"]), "tolerance");
     assert_clean_failure(&mesh(&["--size", "-2"]), "size -2");
@@ -878,5 +883,97 @@ fn mesh_vtu_carries_faces_and_edges() {
     assert_eq!(
         vtu_array(&xml, "types")[nt..],
         vec!["3".to_string(); nl][..]
+    );
+}
+
+/// The command: a curved P2 .msh of the Viking with its summary;
+/// `curve` puts a chart mesh written as .off back on the surface (nothing
+/// moves) and curves it to P3 in .vtu; a mesh of another model is refused
+/// by its first vertex, with one line.
+#[test]
+fn curved_meshes_and_curving_another_mesh() {
+    let msh = scratch("viking-p2.msh");
+    let out = loopsurf(&[
+        "mesh",
+        "--example",
+        "viking",
+        "--hard-angle",
+        "30",
+        "--order",
+        "2",
+        "--no-verify",
+        "-o",
+        msh.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let summary = text(&out.stdout);
+    assert!(
+        summary.contains("order 2: ") && summary.contains("scaled Jacobian: min"),
+        "{summary}"
+    );
+    let file = std::fs::read_to_string(&msh).unwrap();
+    assert!(
+        file.starts_with("$MeshFormat\n4.1 0 8\n"),
+        "{}",
+        &file[..40]
+    );
+
+    let linear = scratch("viking-charts.off");
+    let out = loopsurf(&[
+        "mesh",
+        "--example",
+        "viking",
+        "--hard-angle",
+        "30",
+        "--charts",
+        "--uniform",
+        "2",
+        "--no-verify",
+        "-o",
+        linear.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let curved = scratch("viking-p3.vtu");
+    let out = loopsurf(&[
+        "curve",
+        linear.to_str().unwrap(),
+        "--example",
+        "viking",
+        "--hard-angle",
+        "30",
+        "--order",
+        "3",
+        "-o",
+        curved.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let summary = text(&out.stdout);
+    assert!(
+        summary.contains("160 hard edges found") && summary.contains("order 3: "),
+        "{summary}"
+    );
+    let xml = std::fs::read_to_string(&curved).unwrap();
+    assert!(xml.contains("Name=\"loopsurf_params\"") && xml.contains("Name=\"scaled_jacobian\""));
+
+    let other = scratch("never.msh");
+    let out = loopsurf(&[
+        "curve",
+        msh.to_str().unwrap(),
+        "--example",
+        "sphere",
+        "-o",
+        other.to_str().unwrap(),
+    ]);
+    assert_clean_failure(&out, "vertex 0");
+    assert_clean_failure(
+        &loopsurf(&[
+            "curve",
+            msh.to_str().unwrap(),
+            "--example",
+            "viking",
+            "-o",
+            "x.obj",
+        ]),
+        "must be .msh or .vtu",
     );
 }
