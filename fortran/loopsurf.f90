@@ -608,6 +608,56 @@ contains
         call ls_free_array(cface)
     end function
 
+    !> Curves another tool's linear mesh (ls_curve): xyz(3, nverts) and
+    !> tris(3, ntris) with 1-BASED vertex numbers, counter-clockwise like the
+    !> net. Every vertex goes to its closest point on the surface (refused
+    !> beyond max_move of the diagonal; 0 for the default 1%), and every
+    !> triangle becomes a Lagrange triangle of order `order` (1 to 4).
+    !> Allocates nodes(3, nnodes) (the input vertices first), per node its
+    !> 1-BASED control triangle node_tri(nnodes) and (v, w) node_vw(2,
+    !> nnodes), elements((order+1)(order+2)/2, ntris) with 1-BASED node
+    !> numbers in gmsh's order, and the 1-BASED model face of each triangle
+    !> tri_face(ntris); largest_move is in model units, min_jacobian the
+    !> smallest scaled Jacobian (<= 0: an element folds). Everything is left
+    !> untouched on failure.
+    integer function loopsurf_curve(surface, xyz, tris, order, max_move, nodes, node_tri, node_vw, &
+            elements, tri_face, largest_move, min_jacobian) result(status)
+        type(c_ptr), intent(in) :: surface
+        real(c_double), intent(in) :: xyz(:, :), max_move
+        integer, intent(in) :: tris(:, :), order
+        real(c_double), allocatable, intent(inout) :: nodes(:, :), node_vw(:, :)
+        integer, allocatable, intent(inout) :: node_tri(:), elements(:, :), tri_face(:)
+        real(c_double), intent(inout) :: largest_move, min_jacobian
+        integer(c_size_t) :: nn, nt, per
+        type(c_ptr) :: cnodes, ctri, cvw, celems
+        integer(c_int32_t), allocatable :: faces(:), ctris(:, :)
+        real(c_double) :: moved, jac
+        real(c_double), pointer :: pnodes(:, :), pvw(:, :)
+        integer(c_int32_t), pointer :: ptri(:), pelems(:, :)
+        nt = size(tris, 2, kind=c_size_t)
+        allocate(faces(max(nt, 1_c_size_t)))
+        ctris = int(tris - 1, c_int32_t)
+        status = ls_curve(surface, size(xyz, 2, kind=c_size_t), xyz, nt, ctris, int(order, c_int), &
+            max_move, nn, cnodes, ctri, cvw, celems, faces, moved, jac)
+        if (status /= LS_OK) return
+        per = int((order + 1) * (order + 2) / 2, c_size_t)
+        call c_f_pointer(cnodes, pnodes, [3_c_size_t, nn])
+        call c_f_pointer(ctri, ptri, [nn])
+        call c_f_pointer(cvw, pvw, [2_c_size_t, nn])
+        call c_f_pointer(celems, pelems, [per, nt])
+        nodes = pnodes
+        node_tri = int(ptri) + 1
+        node_vw = pvw
+        elements = int(pelems) + 1
+        tri_face = int(faces(1:nt)) + 1
+        largest_move = moved
+        min_jacobian = jac
+        call ls_free_array(cnodes)
+        call ls_free_array(ctri)
+        call ls_free_array(cvw)
+        call ls_free_array(celems)
+    end function
+
     ! The model with 1-BASED ids: faces, curves, corners, triangles and
     ! vertices all count from 1, and 0 means none. A curve's parameter t
     ! is the same as in C: [0, n_edges]. Arrays are allocated here, and left

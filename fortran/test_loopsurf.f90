@@ -125,6 +125,28 @@ program test_loopsurf
         call check(loopsurf_remesh(surf, 0.3d0, 0d0, .false., 0.5d0, rx, rt, rtri, rvw, rface, dev) &
             == LS_ERR_INVALID_ARGUMENT, "remesh: gradation 0.5")
         call check(index(loopsurf_last_error(), "gradation") > 0, "remesh: names gradation")
+        ! The remeshed mesh curved to P2: its vertices first and unmoved,
+        ! every node on the surface at its 1-based parameters.
+        block
+            real(c_double), allocatable :: cn(:, :), cvw(:, :)
+            integer, allocatable :: ctri(:), cel(:, :), cface(:)
+            real(c_double) :: moved, jac
+            call check(loopsurf_remesh(surf, 0.4d0, 0d0, .false., 0d0, rx, rt, rtri, rvw, rface, dev) == LS_OK, &
+                "remesh for curve")
+            call check(loopsurf_curve(surf, rx, rt, 2, 0d0, cn, ctri, cvw, cel, cface, moved, jac) == LS_OK, &
+                "curve")
+            call check(size(cel, 1) == 6 .and. size(cel, 2) == size(rt, 2), "curve: P2 elements")
+            call check(all(cel(1:3, :) == rt), "curve: vertices first")
+            call check(maxval(abs(cn(:, 1:size(rx, 2)) - rx)) <= 1d-12, "curve: vertices kept")
+            call check(moved < 1d-12 .and. jac > 0d0 .and. all(cface == 1), "curve: moves, Jacobian, faces")
+            do i = 1, size(cn, 2)
+                call check(loopsurf_evaluate(surf, ctri(i), cvw(1, i), cvw(2, i), r) == LS_OK, "eval node")
+                call check(maxval(abs(r(1:3) - cn(:, i))) <= 1d-12, "node on the surface")
+            end do
+            call check(loopsurf_curve(surf, rx, rt, 7, 0d0, cn, ctri, cvw, cel, cface, moved, jac) &
+                == LS_ERR_INVALID_ARGUMENT, "curve: order 7")
+            call check(index(loopsurf_last_error(), "order") > 0, "curve: names the order")
+        end block
     end block
     ! Adaptive subdivision at angle 0 is uniform: 8 * 4**2 triangles, closed.
     call check(ls_adapt(surf, 0d0, 0d0, 2_c_int, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw) == LS_OK, "adapt")
