@@ -61,18 +61,11 @@ impl<'a> Remeshing<'a> {
         }
     }
 
-    /// An edge's length as the sizes measure it: its chord, or along a
-    /// curve the path through the curve's point midway in t. Where a
-    /// crease turns sharply between the ends, the chord is short but the
-    /// curve is not, and the edge must be split (and never collapsed) for
-    /// the mesh to follow the curve.
     fn length(&self, h: u32) -> f64 {
         let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
-        let (xa, xb) = (self.vertices[a as usize].x, self.vertices[b as usize].x);
-        match self.curve_midpoint(h) {
-            Some(m) => xa.distance(m.x) + m.x.distance(xb),
-            None => xa.distance(xb),
-        }
+        self.vertices[a as usize]
+            .x
+            .distance(self.vertices[b as usize].x)
     }
 
     /// The curve vertex midway in t between the ends of h, when h runs
