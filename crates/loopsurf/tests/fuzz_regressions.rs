@@ -64,6 +64,32 @@ fn mesh_readers_replay_their_fuzz_inputs() {
     }
 }
 
+/// The high-order readers (fuzz/fuzz_targets/msh.rs and vtu.rs): parse,
+/// then the Lagrange mesh the file holds.
+#[test]
+fn lagrange_readers_replay_their_fuzz_inputs() {
+    for format in ["msh", "vtu"] {
+        let files = inputs(format);
+        assert!(
+            !files.is_empty(),
+            "{format}: no fuzz inputs kept (fuzz/corpus/{format})"
+        );
+        for file in files {
+            let data = std::fs::read(&file).unwrap();
+            let name = PathBuf::from(format!("input.{format}"));
+            let outcome = std::panic::catch_unwind(|| match format {
+                "msh" => {
+                    let _ = loopsurf::io::parse_msh(&data, &name).and_then(|m| m.to_lagrange());
+                }
+                _ => {
+                    let _ = loopsurf::io::parse_vtu(&data, &name).and_then(|m| m.to_lagrange());
+                }
+            });
+            assert!(outcome.is_ok(), "{} panicked", file.display());
+        }
+    }
+}
+
 #[test]
 fn surface_streams_replay_their_fuzz_inputs() {
     let files = inputs("stream");

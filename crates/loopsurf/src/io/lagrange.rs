@@ -233,30 +233,19 @@ mod tests {
     #[test]
     fn validate_names_the_problem() {
         p2().validate().unwrap();
-        let cases: Vec<(Box<dyn Fn(&mut LagrangeMesh)>, &str)> = vec![
-            (Box::new(|m| m.order = 5), "order 5"),
-            (
-                Box::new(|m| m.faces.push(0)),
-                "order 2 needs 6 per triangle",
-            ),
-            (Box::new(|m| m.lines.push(0)), "order 2 needs 3 per line"),
-            (Box::new(|m| m.triangles[4] = 6), "triangle 0"),
-            (Box::new(|m| m.lines[2] = 9), "refers to node 9"),
-            (Box::new(|m| m.nodes[3].y = f64::NAN), "node 3"),
-            (
-                Box::new(|m| m.params = vec![(0, 0.0, 0.0)]),
-                "1 params for 6 nodes",
-            ),
-            (
-                Box::new(|m| m.params = vec![(0, 0.0, f64::INFINITY); 6]),
-                "params",
-            ),
-            (Box::new(|m| m.faces[0] = u32::MAX), "face id"),
-            (Box::new(|m| m.corners.push((0, 1))), "corner twice"),
-            (
-                Box::new(|m| m.corners.push((6, 1))),
-                "corner entry 1 is node 6",
-            ),
+        type Break = fn(&mut LagrangeMesh);
+        let cases: Vec<(Break, &str)> = vec![
+            (|m| m.order = 5, "order 5"),
+            (|m| m.faces.push(0), "order 2 needs 6 per triangle"),
+            (|m| m.lines.push(0), "order 2 needs 3 per line"),
+            (|m| m.triangles[4] = 6, "triangle 0"),
+            (|m| m.lines[2] = 9, "refers to node 9"),
+            (|m| m.nodes[3].y = f64::NAN, "node 3"),
+            (|m| m.params = vec![(0, 0.0, 0.0)], "1 params for 6 nodes"),
+            (|m| m.params = vec![(0, 0.0, f64::INFINITY); 6], "params"),
+            (|m| m.faces[0] = u32::MAX, "face id"),
+            (|m| m.corners.push((0, 1)), "corner twice"),
+            (|m| m.corners.push((6, 1)), "corner entry 1 is node 6"),
         ];
         for (break_it, message) in cases {
             let mut m = p2();

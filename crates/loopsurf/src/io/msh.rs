@@ -1681,11 +1681,10 @@ pub(super) mod tests {
     use crate::io::nodes_per_triangle;
     use std::path::PathBuf;
 
-    /// A scratch file name unique to this process and test.
+    /// A scratch file name unique to this process and test (tests remove
+    /// their files).
     pub(crate) fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("loopsurf-io-lagrange-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
+        std::env::temp_dir().join(format!("loopsurf-io-{}-{name}", std::process::id()))
     }
 
     /// The node layouts gmsh documents for its Lagrange triangles
@@ -1886,6 +1885,7 @@ pub(super) mod tests {
                 let read = read_msh(&path).unwrap();
                 assert!(read.node_data.is_empty());
                 assert_identical(&read.to_lagrange().unwrap(), m);
+                std::fs::remove_file(&path).unwrap();
             }
         }
         let mut bad = mesh.clone();
@@ -1946,6 +1946,9 @@ pub(super) mod tests {
             let text = std::fs::read_to_string(scratch(&format!("ref{k}false.msh"))).unwrap();
             let ty = TRIANGLE_TYPES[k - 1];
             assert!(text.contains(&format!("\n2 1 {ty} 1\n1 ")), "{text}");
+            for binary in [false, true] {
+                std::fs::remove_file(scratch(&format!("ref{k}{binary}.msh"))).unwrap();
+            }
         }
     }
 
@@ -2272,55 +2275,5 @@ $EndNodeData
             }
         }
         std::fs::remove_file(&path).unwrap();
-    }
-
-    #[test]
-    #[ignore]
-    fn tmp_dump_for_python() {
-        for k in 1..=4 {
-            for binary in [false, true] {
-                let p = format!(
-                    "/tmp/mshx/out{k}_{}.msh",
-                    if binary { "bin" } else { "asc" }
-                );
-                write_msh(Path::new(&p), &fixture(k), binary).unwrap();
-            }
-            let lattice = documented_lattice(k);
-            let mesh = LagrangeMesh {
-                order: k,
-                nodes: lattice
-                    .iter()
-                    .rev()
-                    .map(|&(i, j)| DVec3::new(i as f64 / k as f64, j as f64 / k as f64, 0.0))
-                    .collect(),
-                triangles: (0..lattice.len() as u32).rev().collect(),
-                faces: vec![0],
-                ..Default::default()
-            };
-            write_msh(Path::new(&format!("/tmp/mshx/ref{k}.msh")), &mesh, false).unwrap();
-        }
-    }
-
-    #[test]
-    #[ignore]
-    fn tmp_read_gmsh_files() {
-        for name in ["a41", "b41", "a22", "b22"] {
-            let m = read_msh(Path::new(&format!("/tmp/mshx/{name}.msh"))).unwrap();
-            let l = m.to_lagrange().unwrap();
-            eprintln!("{name}: v{} bin {} nodes {} tris {} lines {} points {} skipped {} order {} faces {:?} curves {:?} corners {:?}", m.version, m.binary, m.nodes.len(), m.triangles.len(), m.lines.len(), m.points.len(), m.skipped_elements, l.order, &l.faces[..3], &l.line_curves[..3], l.corners);
-        }
-        for k in 2..=4 {
-            let want = fixture(k);
-            for name in ["a41", "b41", "a22", "b22"] {
-                let m = read_msh(Path::new(&format!("/tmp/mshx/re{k}_{name}.msh"))).unwrap();
-                let l = m.to_lagrange().unwrap();
-                let same_nodes =
-                    l.nodes.iter().zip(&want.nodes).all(|(a, b)| {
-                        a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits)
-                    });
-                eprintln!("re{k}_{name}: nodes bit-identical {same_nodes} ({} vs {}), triangles same {}, faces same {}, lines same {}, curves same {}, corners {:?} vs {:?}, params same {}, views {}",
-                    l.nodes.len(), want.nodes.len(), l.triangles == want.triangles, l.faces == want.faces, l.lines == want.lines, l.line_curves == want.line_curves, l.corners, want.corners, l.params == want.params, m.node_data.len());
-            }
-        }
     }
 }

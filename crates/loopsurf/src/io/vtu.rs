@@ -1167,6 +1167,7 @@ mod tests {
             let mut want = mesh.clone();
             want.corners.sort();
             assert_identical(&read.to_lagrange().unwrap(), &want);
+            std::fs::remove_file(&path).unwrap();
         }
         // Reserved names are refused.
         let mesh = fixture(2);
@@ -1211,6 +1212,7 @@ mod tests {
             (lag.order, lag.faces.as_slice(), lag.line_curves.as_slice()),
             (1, &[0][..], &[0][..])
         );
+        std::fs::remove_file(&path).unwrap();
     }
 
     /// An ASCII file the way ParaView 5 saves one: Float32 points, ranges,
@@ -1348,40 +1350,6 @@ mod tests {
             }
             if let Ok(m) = parse_vtu(&data, Path::new("damaged.vtu")) {
                 let _ = m.to_lagrange();
-            }
-        }
-    }
-
-    #[test]
-    #[ignore]
-    fn tmp_dump_vtu() {
-        for k in 1..=4 {
-            let p = format!("/tmp/mshx/out{k}.vtu");
-            write_vtu_lagrange(Path::new(&p), &fixture(k), &[], &[]).unwrap();
-        }
-    }
-
-    #[test]
-    #[ignore]
-    fn tmp_read_vtk_files() {
-        for k in 2..=4 {
-            let want = {
-                let mut m = fixture(k);
-                m.corners.sort();
-                m
-            };
-            let m = read_vtu(Path::new(&format!("/tmp/mshx/vtkascii{k}.vtu"))).unwrap();
-            let l = m.to_lagrange().unwrap();
-            eprintln!(
-                "vtkascii{k}: arrays {:?} / {:?}; identical to the fixture: {}",
-                m.point_data.iter().map(|a| &a.name).collect::<Vec<_>>(),
-                m.cell_data.iter().map(|a| &a.name).collect::<Vec<_>>(),
-                l == want
-            );
-            assert_identical(&l, &want);
-            for kind in ["bin", "app"] {
-                let e = read_vtu(Path::new(&format!("/tmp/mshx/vtk{kind}{k}.vtu"))).unwrap_err();
-                eprintln!("vtk{kind}{k}: {e}");
             }
         }
     }
