@@ -955,6 +955,39 @@ fn curved_meshes_and_curving_another_mesh() {
     let xml = std::fs::read_to_string(&curved).unwrap();
     assert!(xml.contains("Name=\"loopsurf_params\"") && xml.contains("Name=\"scaled_jacobian\""));
 
+    // --measure: our own P2 mesh, as given and curved again, is as near
+    // (the numbers: order, distance, triangle, distance, triangle).
+    let again = scratch("viking-p2-again.msh");
+    let out = loopsurf(&[
+        "curve",
+        msh.to_str().unwrap(),
+        "--example",
+        "viking",
+        "--hard-angle",
+        "30",
+        "--measure",
+        "-o",
+        again.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let summary = text(&out.stdout);
+    let line = summary
+        .lines()
+        .find(|l| l.starts_with("largest distance"))
+        .expect(&summary);
+    let numbers: Vec<f64> = line
+        .split_whitespace()
+        .filter_map(|w| w.trim_end_matches(',').parse::<f64>().ok())
+        .collect();
+    assert!(
+        line.contains("input (order 2, as given)") && numbers.len() == 5,
+        "{line}"
+    );
+    assert!(
+        numbers[1] > 0.0 && (numbers[1] - numbers[3]).abs() <= 1e-3 * numbers[1],
+        "{line}"
+    );
+
     let other = scratch("never.msh");
     let out = loopsurf(&[
         "curve",

@@ -57,7 +57,8 @@ pub struct CurvedMesh {
     /// linear mesh's vertices in their order, then the edge nodes, then the
     /// interior nodes.
     pub nodes: Vec<DVec3>,
-    /// Per node: a control triangle and (v, w) where `eval` gives it.
+    /// Per node: a control triangle and (v, w) where `eval` gives it
+    /// (empty for a mesh read as it is: [`CurvedMesh::from_lagrange`]).
     pub params: Vec<SurfacePoint>,
     /// [`nodes_per_triangle`]`(order)` node indices per triangle, in gmsh's
     /// order ([`lagrange`]), triangles in the linear mesh's order.
@@ -98,6 +99,24 @@ impl CurvedMesh {
     pub fn element(&self, t: usize) -> &[u32] {
         let n = self.nodes_per_triangle();
         &self.triangles[n * t..n * (t + 1)]
+    }
+
+    /// A mesh read from a file, as it is: its nodes need not lie on any
+    /// surface, and carry no parameters (so only [`CurvedMesh::validity`],
+    /// [`CurvedMesh::distance_to`] and [`CurvedMesh::area`] apply).
+    pub fn from_lagrange(mesh: &crate::io::LagrangeMesh, diagonal: f64) -> CurvedMesh {
+        CurvedMesh {
+            order: mesh.order,
+            nodes: mesh.nodes.clone(),
+            params: Vec::new(),
+            triangles: mesh.triangles.clone(),
+            faces: mesh.faces.clone(),
+            lines: mesh.lines.clone(),
+            line_curves: mesh.line_curves.clone(),
+            corners: mesh.corners.clone(),
+            vertices: 0,
+            diagonal,
+        }
     }
 
     /// The mesh as the file writers take it.

@@ -104,7 +104,8 @@ impl CurvedMesh {
     /// The largest distance from the curved mesh to `surface`, over 15
     /// interior samples per triangle, each snapped with the certified snap
     /// (from the nearest node's parameters, so it is usually a
-    /// confirmation).
+    /// confirmation; without parameters, as for a mesh read from another
+    /// tool, from scratch).
     pub fn distance_to(&self, surface: &Surface) -> Result<Distance> {
         let samples = samples();
         let per = self.nodes_per_triangle();
@@ -121,8 +122,10 @@ impl CurvedMesh {
                 for b in &bases {
                     let [x, _, _] = apply(b, &points);
                     let nearest = (0..per).fold(0, |m, j| if b[j][0] > b[m][0] { j } else { m });
-                    let p = self.params[ids[nearest] as usize];
-                    let snap = surface.snap_near(x, p.tri as usize, p.v, p.w)?;
+                    let snap = match self.params.get(ids[nearest] as usize) {
+                        Some(p) => surface.snap_near(x, p.tri as usize, p.v, p.w)?,
+                        None => surface.closest_point(x)?,
+                    };
                     worst = worst.max(snap.distance);
                 }
                 Ok((worst, t as u32))
