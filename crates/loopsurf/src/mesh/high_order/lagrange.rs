@@ -14,6 +14,8 @@
 /// formats carry), and the node count of each.
 pub use crate::io::{nodes_per_triangle, MAX_LAGRANGE_ORDER as MAX_ORDER};
 
+use glam::DVec3;
+
 /// Lattice coordinates (i, j) of the nodes of the order-k triangle in
 /// gmsh's order: node at (ξ, η) = (i/k, j/k).
 pub fn lattice(k: usize) -> Vec<[usize; 2]> {
@@ -69,6 +71,39 @@ pub fn basis(k: usize, xi: f64, eta: f64) -> Vec<[f64; 3]> {
             [a * b * c, da * b * c - a * b * dc, a * db * c - a * b * dc]
         })
         .collect()
+}
+
+/// Where interior node (i, j) of an order-k element goes when only its
+/// boundary nodes are known (`boundary`: the vertices, then the edge nodes,
+/// in gmsh's order): for k = 3 the centroid value of the cubic that
+/// reproduces every quadratic, Σ edge nodes / 4 − Σ vertices / 6; for k = 4
+/// the quadratic element through the vertices and the edge midpoints;
+/// otherwise (no interior) the flat point. Curving the interior with the
+/// edges keeps an element whose edges bend strongly from folding over its
+/// own interior node.
+pub fn interior_from_boundary(k: usize, boundary: &[DVec3], [i, j]: [usize; 2]) -> Option<DVec3> {
+    let vertices = &boundary[..3];
+    match k {
+        3 => {
+            let edges: DVec3 = boundary[3..9].iter().sum();
+            let corners: DVec3 = vertices.iter().sum();
+            Some(edges / 4.0 - corners / 6.0)
+        }
+        4 => {
+            // Edge s's middle node is its second of three.
+            let mids = [boundary[4], boundary[7], boundary[10]];
+            let quadratic: Vec<DVec3> = vertices.iter().chain(&mids).copied().collect();
+            let (x, y) = (i as f64 / 4.0, j as f64 / 4.0);
+            Some(
+                basis(2, x, y)
+                    .iter()
+                    .zip(&quadratic)
+                    .map(|(b, &p)| b[0] * p)
+                    .sum(),
+            )
+        }
+        _ => None,
+    }
 }
 
 /// Four-point Gauss–Legendre on [0, 1]: nodes and weights.
@@ -176,6 +211,25 @@ mod tests {
                 assert!((sum(&xs, 0) - x).abs() < 1e-13 && (sum(&ys, 0) - y).abs() < 1e-13);
                 assert!((sum(&xs, 1) - 1.0).abs() < 1e-12 && sum(&xs, 2).abs() < 1e-12);
                 assert!(sum(&ys, 1).abs() < 1e-12 && (sum(&ys, 2) - 1.0).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// The interior guesses reproduce a quadratic map exactly: boundary
+    /// nodes of a quadratic give its interior values.
+    #[test]
+    fn interior_from_boundary_reproduces_quadratics() {
+        let f = |x: f64, y: f64| DVec3::new(x + 0.3 * y * y, y - 0.7 * x * y, 0.2 * x * x - y);
+        for k in [3, 4] {
+            let nodes = reference_nodes(k);
+            let boundary: Vec<DVec3> = nodes[..3 * k].iter().map(|&[x, y]| f(x, y)).collect();
+            for (&[i, j], &[x, y]) in lattice(k)[3 * k..].iter().zip(&nodes[3 * k..]) {
+                let got = interior_from_boundary(k, &boundary, [i, j]).unwrap();
+                assert!(
+                    got.distance(f(x, y)) < 1e-14,
+                    "order {k} node ({i}, {j}): {got} vs {}",
+                    f(x, y)
+                );
             }
         }
     }

@@ -6,10 +6,11 @@
 //! its nodes ([`lagrange`] has the node layout, gmsh's). The nodes are
 //! placed in one of three ways, in this order of preference:
 //!
-//! 1. **On a crease or boundary curve**, an edge's nodes are the curve at
-//!    equispaced curve parameters t between its ends. The crease limit
-//!    curve is exact and shares its parameterisation with the surface
-//!    along each control edge, so this is also what 2 gives there.
+//! 1. **On a crease or boundary curve**, an edge's nodes are on the exact
+//!    curve: in a chart mesh at equispaced curve parameters t (the curve
+//!    shares its parameterisation with the surface along each control
+//!    edge, so this is what 2 gives there); otherwise the point of the
+//!    curve nearest to the straight-sided node, as in 3.
 //! 2. **In the element's chart**, for the chart mesher's elements (each
 //!    inside one control triangle): equispaced in the chart's (v, w). The
 //!    surface is one polynomial piece per control triangle away from
@@ -19,10 +20,14 @@
 //! 3. **Otherwise** (the remesher's elements, and meshes made elsewhere,
 //!    span several control triangles) the node is the closest point of the
 //!    surface to the corresponding node of the straight-sided triangle:
-//!    local projection from the nearest vertex, and the certified snap
-//!    where the projection ends farther than a quarter of the edge. The
+//!    the nearest of the local projections from the element's vertices,
+//!    and the certified snap where that ends farther than a quarter of the
+//!    shortest edge. The
 //!    element map then interpolates the closest-point map, which is smooth
-//!    wherever the surface is, so the orders hold there too. The
+//!    wherever the surface is, so the orders hold there too. Interior
+//!    nodes (P3, P4) start from the element its curved edges make
+//!    ([`lagrange::interior_from_boundary`]) rather than from the flat
+//!    triangle, so that they follow edges that bend strongly. The
 //!    parameters are not used here even where the ends share a control
 //!    triangle: next to an irregular vertex the parameterisation is so
 //!    uneven that a parameter midpoint can lie an edge length off the
@@ -197,8 +202,8 @@ impl SurfaceMesh {
                     .map(|i| {
                         let s = i as f64 / k as f64;
                         match hard {
-                            Some((c, [ta, tb])) => placer.on_curve(*c, ta + s * (tb - ta)),
-                            None => placer.between(&[a, b], &[1.0 - s, s], t as usize),
+                            Some((c, ts)) => placer.on_curve(*c, *ts, s, [a, b]),
+                            None => placer.between(&[a, b], &[1.0 - s, s], t as usize, None),
                         }
                     })
                     .collect::<Result<Vec<Node>>>()
@@ -214,11 +219,24 @@ impl SurfaceMesh {
             .into_par_iter()
             .map(|t| {
                 let tri = self.triangles[t];
+                // The element's edge nodes so far, in its own order.
+                let mut boundary: Vec<DVec3> =
+                    tri.iter().map(|&v| self.points[v as usize]).collect();
+                for s in 0..3 {
+                    let (a, b) = (tri[s], tri[(s + 1) % 3]);
+                    let first = edge_of(a, b) * inner;
+                    let mut ids: Vec<usize> = (first..first + inner).collect();
+                    if a > b {
+                        ids.reverse();
+                    }
+                    boundary.extend(ids.iter().map(|&i| edge_nodes[i].0));
+                }
                 interior
                     .iter()
                     .map(|&[i, j]| {
                         let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
-                        placer.between(&tri, &[1.0 - x - y, x, y], t)
+                        let target = lagrange::interior_from_boundary(k, &boundary, [i, j]);
+                        placer.between(&tri, &[1.0 - x - y, x, y], t, target)
                     })
                     .collect::<Result<Vec<Node>>>()
             })
@@ -309,22 +327,51 @@ struct Placer<'a> {
 }
 
 impl Placer<'_> {
-    /// The curve point at parameter t (wrapped around a closed curve), with
-    /// its parameters on the first face beside it.
-    fn on_curve(&self, curve: u32, t: f64) -> Result<Node> {
+    /// The node at fraction `s` of the curve edge from vertex `ends[0]`
+    /// (curve parameter `ts[0]`) to `ends[1]` (`ts[1]`): in a chart mesh
+    /// the curve at the interpolated t (which is the chart's parameter
+    /// along its control edge); otherwise the point of the curve nearest
+    /// to the straight-sided node, between the ends. Equispaced t would not
+    /// do there: next to a dart's tip the curve's speed falls to zero, and
+    /// a node at the middle t sits next to the tip and folds the element.
+    fn on_curve(&self, curve: u32, ts: [f64; 2], s: f64, ends: [u32; 2]) -> Result<Node> {
         let c = &self.surface.model().curves()[curve as usize];
         let n = c.len() as f64;
-        let t = if c.is_closed() { t.rem_euclid(n) } else { t };
-        let sides = self.surface.curve_surface_points(curve as usize, t)?;
+        let wrap = |t: f64| if c.is_closed() { t.rem_euclid(n) } else { t };
+        let guess = ts[0] + s * (ts[1] - ts[0]);
+        let mut t = guess;
+        if self.mesh.charts.is_empty() {
+            let [xa, xb] = ends.map(|i| self.mesh.points[i as usize]);
+            let snap =
+                self.surface
+                    .curve_project(curve as usize, xa + s * (xb - xa), wrap(guess))?;
+            // Back on the unwrapped side of the guess, and between the ends.
+            let mut projected = snap.t;
+            if c.is_closed() {
+                projected += n * ((guess - projected) / n).round();
+            }
+            let (lo, hi) = (ts[0].min(ts[1]), ts[0].max(ts[1]));
+            if lo < projected && projected < hi {
+                t = projected;
+            }
+        }
+        let sides = self.surface.curve_surface_points(curve as usize, wrap(t))?;
         let p = sides[0].1;
         Ok((self.surface.point(p.tri as usize, p.v, p.w)?, p))
     }
 
     /// The point with barycentric `weights` on `vertices` (of triangle
     /// `t`): equispaced in one control triangle's parameters when all the
-    /// vertices can be expressed in it, else the closest point to the
-    /// straight-sided point (module doc, 2 and 3), in `t`'s face either way.
-    fn between(&self, vertices: &[u32], weights: &[f64], t: usize) -> Result<Node> {
+    /// vertices can be expressed in it, else the closest point to `target`
+    /// (by default the straight-sided point; module doc, 2 and 3), in `t`'s
+    /// face either way.
+    fn between(
+        &self,
+        vertices: &[u32],
+        weights: &[f64],
+        t: usize,
+        target: Option<DVec3>,
+    ) -> Result<Node> {
         let mesh = self.mesh;
         let surface = self.surface;
         let net = surface.net();
@@ -348,33 +395,43 @@ impl Placer<'_> {
             let p = SurfacePoint { tri: c, v, w };
             return Ok((surface.point(c as usize, v, w)?, p));
         }
-        let flat: DVec3 = vertices
-            .iter()
-            .zip(weights)
-            .map(|(&i, &s)| s * mesh.points[i as usize])
-            .sum();
-        // The guess: the heaviest vertex that can be seen from the face.
+        let flat: DVec3 = target.unwrap_or_else(|| {
+            vertices
+                .iter()
+                .zip(weights)
+                .map(|(&i, &s)| s * mesh.points[i as usize])
+                .sum()
+        });
+        // Local projections from every vertex seen from the face, nearest
+        // kept: next to an irregular vertex a descent from one corner can
+        // stall in a far local minimum that another corner's avoids.
         let mut order: Vec<usize> = (0..weights.len()).collect();
         order.sort_by(|&a, &b| weights[b].total_cmp(&weights[a]));
-        let guess = order
+        let guesses: Vec<SurfacePoint> = order
             .iter()
-            .find_map(|&j| in_face(surface, params[j], face))
-            .ok_or_else(|| {
-                Error::InvalidArgument(format!(
-                    "triangle {t}: none of its vertices {vertices:?} lies on its face {face}"
-                ))
-            })?;
+            .filter_map(|&j| in_face(surface, params[j], face))
+            .collect();
+        let Some(&first) = guesses.first() else {
+            return Err(Error::InvalidArgument(format!(
+                "triangle {t}: none of its vertices {vertices:?} lies on its face {face}"
+            )));
+        };
+        let mut snap = surface.project_in_face(flat, first.tri as usize, first.v, first.w)?;
+        for g in &guesses[1..] {
+            let other = surface.project_in_face(flat, g.tri as usize, g.v, g.w)?;
+            if other.distance < snap.distance {
+                snap = other;
+            }
+        }
         let shortest = (0..vertices.len())
             .map(|j| {
                 let (a, b) = (vertices[j], vertices[(j + 1) % vertices.len()]);
                 (mesh.points[a as usize] - mesh.points[b as usize]).length()
             })
             .fold(f64::INFINITY, f64::min);
-        let (tri, v, w) = (guess.tri as usize, guess.v, guess.w);
-        let mut snap = surface.project_in_face(flat, tri, v, w)?;
         if snap.distance > 0.25 * shortest {
-            // A far local minimum: the global one, if it is on this face.
-            let global = surface.snap_near(flat, tri, v, w)?;
+            // Still far: the global minimum, if it is on this face.
+            let global = surface.snap_near(flat, first.tri as usize, first.v, first.w)?;
             if face_of[global.tri] == face && global.distance < snap.distance {
                 snap = global;
             }
