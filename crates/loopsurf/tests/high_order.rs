@@ -370,3 +370,38 @@ fn meshio_reads(path: &std::path::Path, triangles: usize) {
         path.display()
     );
 }
+
+/// Bad orders and inconsistent meshes are refused by name, never a panic.
+#[test]
+fn bad_input_is_refused_by_name() {
+    let net = example("cube", None);
+    let surface = Surface::new(&net).unwrap();
+    let mesh = Mesher::new(&surface)
+        .density(Density::Uniform(1))
+        .run()
+        .unwrap();
+    let message = |m: &loopsurf::SurfaceMesh, k: usize| {
+        m.raise_order(&surface, k)
+            .err()
+            .expect("refused")
+            .to_string()
+    };
+    assert!(message(&mesh, 0).contains("order 0"));
+    assert!(message(&mesh, 5).contains("order 5"));
+    let mut bad = mesh.clone();
+    bad.faces.pop();
+    assert!(message(&bad, 2).contains("faces"));
+    let mut bad = mesh.clone();
+    bad.params.pop();
+    assert!(message(&bad, 2).contains("params"));
+    let mut bad = mesh.clone();
+    bad.charts.pop();
+    assert!(message(&bad, 2).contains("charts"));
+    let mut bad = mesh.clone();
+    bad.triangles[0][1] = 10_000;
+    assert!(message(&bad, 2).contains("10000"));
+    let mut bad = mesh;
+    bad.params[3].v = 2.0;
+    let m = message(&bad, 2);
+    assert!(m.contains("(v, w) = (2, 1)"), "{m}");
+}

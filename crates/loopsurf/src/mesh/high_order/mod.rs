@@ -153,6 +153,26 @@ impl SurfaceMesh {
                 "order {order}: must be 1 to {MAX_ORDER}"
             )));
         }
+        // The fields are public: a mesh put together by hand is checked
+        // before it is indexed (parameters and indices by curve_edges).
+        let counts = [
+            ("params", self.params.len(), self.points.len(), "points"),
+            ("faces", self.faces.len(), self.triangles.len(), "triangles"),
+        ];
+        for (what, n, want, of) in counts {
+            if n != want {
+                return Err(Error::InvalidArgument(format!(
+                    "{n} {what} for {want} {of}"
+                )));
+            }
+        }
+        if !self.charts.is_empty() && self.charts.len() != self.triangles.len() {
+            return Err(Error::InvalidArgument(format!(
+                "{} charts for {} triangles (give one per triangle, or none)",
+                self.charts.len(),
+                self.triangles.len()
+            )));
+        }
         let curve_edges = self.curve_edges(surface)?;
         let k = order;
         let placer = Placer {
