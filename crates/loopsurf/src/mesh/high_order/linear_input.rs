@@ -100,7 +100,8 @@ pub fn onto_surface(
         .collect::<Result<Vec<u32>>>()?;
 
     // Edges with their triangles' faces; a second side arrives later.
-    let mut sides: HashMap<(u32, u32), [Option<u32>; 2]> = HashMap::new();
+    type Sides = [Option<u32>; 2];
+    let mut sides: HashMap<(u32, u32), Sides> = HashMap::new();
     for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
@@ -108,7 +109,7 @@ pub fn onto_surface(
             entry[usize::from(entry[0].is_some())] = Some(faces[t]);
         }
     }
-    let mut feature_edges: Vec<((u32, u32), [Option<u32>; 2])> =
+    let mut feature_edges: Vec<((u32, u32), Sides)> =
         sides.into_iter().filter(|(_, f)| f[0] != f[1]).collect();
     feature_edges.sort_unstable_by_key(|e| e.0);
 
