@@ -65,6 +65,8 @@ impl Evaluator {
             around: Vec<u32>,
             table: std::collections::HashMap<u64, Vec<u32>>,
             keys: Vec<Key>,
+            smooth: std::collections::HashMap<usize, u32>,
+            outer: Vec<u32>,
         }
         let prepare = |t: usize, scratch: &mut Scratch| {
             if let Some(s) = regular::stencil(topo, features, &kinds, t) {
@@ -78,6 +80,12 @@ impl Evaluator {
             let c = topo.triangles()[t];
             let [c, p, q] = [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]];
             neighbourhood_into(topo, c, p, q, &mut scratch.around);
+            // Most special corners are a smooth vertex of valence N among
+            // regular ones, whose key depends on N alone: built once.
+            let generic = generic_smooth_valence(topo, &kinds, c, &mut scratch.outer);
+            if let Some(&id) = generic.and_then(|n| scratch.smooth.get(&n)) {
+                return Prepared::Special(corner as u8, id, Box::from(&scratch.around[..]));
+            }
             Key::around_into(
                 topo,
                 features,
@@ -95,6 +103,9 @@ impl Evaluator {
                     scratch.keys.len() as u32 - 1
                 }
             };
+            if let Some(n) = generic {
+                scratch.smooth.insert(n, id);
+            }
             Prepared::Special(corner as u8, id, Box::from(&scratch.around[..]))
         };
         const CHUNK: usize = 8192;
@@ -440,4 +451,46 @@ pub struct AtVertex {
     /// The outward unit normal there of the sector the triangle lies in,
     /// when the sector has a tangent plane.
     pub normal: Option<DVec3>,
+}
+
+/// The valence N of c when c is a smooth vertex whose neighbours are all
+/// smooth, of valence 6, and whose second ring is generic (the 2N outer
+/// vertices distinct from each other and from c and its ring): then every
+/// corner at c has the same configuration key, which depends on N alone
+/// (the key reads only the triangles around c and its neighbours, their
+/// hard edges and tags). After one refinement nearly every special corner
+/// of a smooth net is one, so its key need not be built again.
+fn generic_smooth_valence(
+    topo: &crate::topology::Topology,
+    kinds: &[crate::features::VertexKind],
+    c: u32,
+    outer: &mut Vec<u32>,
+) -> Option<usize> {
+    use crate::features::VertexKind::Smooth;
+    if kinds[c as usize] != Smooth {
+        return None;
+    }
+    let ring = topo.ring(c as usize);
+    outer.clear();
+    for &x in ring {
+        if kinds[x as usize] != Smooth || topo.valence(x as usize) != 6 {
+            return None;
+        }
+        let before = outer.len();
+        outer.extend(
+            topo.ring(x as usize)
+                .iter()
+                .filter(|&&y| y != c && !ring.contains(&y)),
+        );
+        // c and its two neighbours beside x, and three outer vertices.
+        if outer.len() != before + 3 {
+            return None;
+        }
+    }
+    outer.sort_unstable();
+    outer.dedup();
+    // Each neighbour's outer vertices at its ends are those of the
+    // neighbours beside it (across their shared edge from c): 2N distinct
+    // ones when nothing else coincides.
+    (outer.len() == 2 * ring.len()).then_some(ring.len())
 }
