@@ -128,8 +128,12 @@ impl Evaluator {
                 })
                 .collect();
             for (prepared, keys) in prepared {
+                // Built on a pool thread: a configuration refines a small
+                // local net with parallel loops, which called from outside
+                // the pool would wake a worker for every one of them (on
+                // pig, more time in futexes than in arithmetic).
                 let shared: Vec<Arc<SpecialPatch>> =
-                    keys.into_iter().map(|k| cache.get(k)).collect();
+                    rayon::scope(|_| keys.into_iter().map(|k| cache.get(k)).collect());
                 patches.extend(prepared.into_iter().map(|p| match p {
                     Prepared::Regular(coefficients) => {
                         regular_patches.push(coefficients);
