@@ -1,0 +1,368 @@
+//! The UnstructuredGrid in a `.vtu` file's tags: its piece, points, cells
+//! and data arrays, read from the tags `xml` finds and checked against
+//! each other.
+
+use glam::DVec3;
+
+use super::xml::{find, lossy, next_tag, XmlError};
+use super::{VtuArray, VtuMesh};
+
+/// A DataArray's values as read, with where it starts.
+struct RawArray {
+    name: String,
+    components: usize,
+    values: Vec<f64>,
+    at: usize,
+}
+
+/// The tags that may hold a DataArray we use.
+#[derive(Clone, Copy, PartialEq)]
+enum Parent {
+    PointData,
+    CellData,
+    Points,
+    Cells,
+    Other,
+}
+
+pub(super) fn parse_xml(data: &[u8]) -> Result<VtuMesh, XmlError> {
+    let mut stack: Vec<(&[u8], usize)> = Vec::new();
+    let mut seen_file = false;
+    let mut piece: Option<(usize, usize, usize)> = None; // points, cells, where
+    let (mut point_data, mut cell_data) = (Vec::new(), Vec::new());
+    let mut points: Option<RawArray> = None;
+    let (mut connectivity, mut offsets, mut types) = (None, None, None);
+    let mut pos = 0;
+    while let Some(tag) = next_tag(data, pos)? {
+        pos = tag.end;
+        if tag.closing {
+            match stack.pop() {
+                Some((open, _)) if open == tag.name => continue,
+                Some((open, _)) => {
+                    return Err((
+                        tag.start,
+                        format!(
+                            "</{}> closes <{}>",
+                            lossy(tag.name).trim_matches('"'),
+                            lossy(open).trim_matches('"')
+                        ),
+                    ))
+                }
+                None => return Err((tag.start, "a closing tag with nothing open".into())),
+            }
+        }
+        match tag.name {
+            b"VTKFile" => {
+                let ty = tag.attr("type").unwrap_or("");
+                if ty != "UnstructuredGrid" {
+                    return Err((
+                        tag.start,
+                        format!("a VTK {ty:?} file; only UnstructuredGrid (.vtu) is read"),
+                    ));
+                }
+                seen_file = true;
+            }
+            b"Piece" => {
+                if piece.is_some() {
+                    return Err((
+                        tag.start,
+                        "a second Piece: only single-piece files are read (merge blocks in ParaView first)"
+                            .into(),
+                    ));
+                }
+                let count = |name: &str| -> Result<usize, XmlError> {
+                    let v = tag.attr(name).unwrap_or("0");
+                    v.trim()
+                        .parse()
+                        .map_err(|_| (tag.start, format!("Piece {name}={v:?} is not a count")))
+                };
+                piece = Some((count("NumberOfPoints")?, count("NumberOfCells")?, tag.start));
+            }
+            b"AppendedData" => {
+                return Err((
+                    tag.start,
+                    "appended (raw or base64) data: only ASCII .vtu files are read; \
+                     save as ASCII (ParaView: File > Save Data, Data Mode: Ascii)"
+                        .into(),
+                ))
+            }
+            b"DataArray" => {
+                let parent = match stack.last().map(|&(n, _)| n) {
+                    Some(b"PointData") => Parent::PointData,
+                    Some(b"CellData") => Parent::CellData,
+                    Some(b"Points") => Parent::Points,
+                    Some(b"Cells") => Parent::Cells,
+                    _ => Parent::Other,
+                };
+                let name = tag.attr("Name").unwrap_or("").to_string();
+                let format = tag.attr("format").unwrap_or("ascii");
+                if format != "ascii" {
+                    return Err((
+                        tag.start,
+                        format!(
+                            "DataArray {name:?} is {format}: only ASCII .vtu files are read; \
+                             save as ASCII (ParaView: File > Save Data, Data Mode: Ascii)"
+                        ),
+                    ));
+                }
+                let components = match tag.attr("NumberOfComponents") {
+                    None => 1,
+                    Some(c) => c.trim().parse().ok().filter(|&c| c >= 1).ok_or_else(|| {
+                        (
+                            tag.start,
+                            format!("DataArray {name:?}: NumberOfComponents={c:?}"),
+                        )
+                    })?,
+                };
+                let integer = tag.attr("type").is_some_and(|t| t.contains("Int"));
+                let (values, end) = if tag.empty {
+                    (Vec::new(), tag.end)
+                } else {
+                    array_values(data, tag.end, &name, integer)?
+                };
+                pos = end;
+                let array = RawArray {
+                    name,
+                    components,
+                    values,
+                    at: tag.start,
+                };
+                match parent {
+                    Parent::PointData => point_data.push(array),
+                    Parent::CellData => cell_data.push(array),
+                    Parent::Points => points = Some(array),
+                    Parent::Cells => match array.name.as_str() {
+                        "connectivity" => connectivity = Some(array),
+                        "offsets" => offsets = Some(array),
+                        "types" => types = Some(array),
+                        _ => {}
+                    },
+                    Parent::Other => {}
+                }
+                continue; // its closing tag is consumed
+            }
+            _ => {}
+        }
+        if !tag.empty {
+            stack.push((tag.name, tag.start));
+        }
+    }
+    if let Some(&(open, at)) = stack.last() {
+        return Err((
+            at,
+            format!("<{}> is never closed", lossy(open).trim_matches('"')),
+        ));
+    }
+    if !seen_file {
+        return Err((0, "not a VTK XML file: no <VTKFile> element".into()));
+    }
+    let Some((npoints, ncells, piece_at)) = piece else {
+        return Err((data.len(), "no <Piece> element".into()));
+    };
+    assemble(
+        npoints,
+        ncells,
+        piece_at,
+        points,
+        connectivity,
+        offsets,
+        types,
+        point_data,
+        cell_data,
+    )
+}
+
+/// The numbers of a DataArray whose content starts at `from`, up to its
+/// `</DataArray>`, skipping the InformationKey elements ParaView puts
+/// there. Returns the values and the offset past the closing tag.
+fn array_values(
+    data: &[u8],
+    from: usize,
+    name: &str,
+    integer: bool,
+) -> Result<(Vec<f64>, usize), XmlError> {
+    let mut values = Vec::new();
+    let mut pos = from;
+    loop {
+        let lt = find(data, pos, b"<")
+            .ok_or_else(|| (from, format!("DataArray {name:?} is never closed")))?;
+        let text = &data[pos..lt];
+        for token in text
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|t| !t.is_empty())
+        {
+            let at = token.as_ptr() as usize - data.as_ptr() as usize;
+            let s = std::str::from_utf8(token).ok();
+            let x = if integer {
+                s.and_then(|s| s.parse::<i64>().ok()).map(|i| i as f64)
+            } else {
+                s.and_then(|s| s.parse::<f64>().ok())
+            };
+            let x = x.ok_or_else(|| {
+                let what = if integer { "an integer" } else { "a number" };
+                (
+                    at,
+                    format!(
+                        "DataArray {name:?}: expected {what}, found {}",
+                        lossy(token)
+                    ),
+                )
+            })?;
+            values.push(x);
+        }
+        let tag = next_tag(data, lt)?
+            .ok_or_else(|| (lt, format!("DataArray {name:?} is never closed")))?;
+        if tag.closing && tag.name == b"DataArray" {
+            return Ok((values, tag.end));
+        }
+        if tag.closing {
+            return Err((tag.start, format!("DataArray {name:?} is never closed")));
+        }
+        pos = tag.end;
+        if !tag.empty {
+            // Skip the element (an InformationKey and its values).
+            let mut close = b"</".to_vec();
+            close.extend_from_slice(tag.name);
+            let k = find(data, pos, &close).ok_or_else(|| {
+                (
+                    tag.start,
+                    format!(
+                        "<{}> inside DataArray {name:?} is never closed",
+                        lossy(tag.name)
+                    ),
+                )
+            })?;
+            pos = find(data, k, b">").map_or(data.len(), |e| e + 1);
+        }
+    }
+}
+
+/// Checks counts and indices and builds the mesh.
+#[allow(clippy::too_many_arguments)]
+fn assemble(
+    npoints: usize,
+    ncells: usize,
+    piece_at: usize,
+    points: Option<RawArray>,
+    connectivity: Option<RawArray>,
+    offsets: Option<RawArray>,
+    types: Option<RawArray>,
+    point_data: Vec<RawArray>,
+    cell_data: Vec<RawArray>,
+) -> Result<VtuMesh, XmlError> {
+    let mut mesh = VtuMesh::default();
+    match points {
+        Some(p) if p.components == 3 && p.values.len() == 3 * npoints => {
+            mesh.points = p.values.chunks_exact(3).map(DVec3::from_slice).collect();
+        }
+        Some(p) => {
+            return Err((
+                p.at,
+                format!(
+                    "Points has {} values in {} components; NumberOfPoints={npoints} needs {} in 3",
+                    p.values.len(),
+                    p.components,
+                    3 * npoints
+                ),
+            ))
+        }
+        None if npoints == 0 => {}
+        None => {
+            return Err((
+                piece_at,
+                format!("NumberOfPoints={npoints} but no <Points>"),
+            ))
+        }
+    }
+    if ncells > 0 {
+        let need = |a: Option<RawArray>, what: &str| {
+            a.ok_or_else(|| {
+                (
+                    piece_at,
+                    format!("NumberOfCells={ncells} but no {what:?} array in <Cells>"),
+                )
+            })
+        };
+        let (conn, offs, tys) = (
+            need(connectivity, "connectivity")?,
+            need(offsets, "offsets")?,
+            need(types, "types")?,
+        );
+        for a in [&offs, &tys] {
+            if a.values.len() != ncells {
+                return Err((
+                    a.at,
+                    format!(
+                        "{:?} has {} values for NumberOfCells={ncells}",
+                        a.name,
+                        a.values.len()
+                    ),
+                ));
+            }
+        }
+        for (c, &t) in tys.values.iter().enumerate() {
+            if !(0.0..=255.0).contains(&t) {
+                return Err((tys.at, format!("cell {c} has type {t}")));
+            }
+            mesh.cell_types.push(t as u8);
+        }
+        let mut last = 0;
+        for (c, &o) in offs.values.iter().enumerate() {
+            if !(o >= last as f64 && o <= conn.values.len() as f64) {
+                return Err((
+                    offs.at,
+                    format!(
+                        "offset {o} of cell {c} is not between the previous one ({last}) and \
+                         the connectivity's length ({})",
+                        conn.values.len()
+                    ),
+                ));
+            }
+            last = o as usize;
+            mesh.offsets.push(last);
+        }
+        if last != conn.values.len() {
+            return Err((
+                offs.at,
+                format!(
+                    "the offsets end at {last}, the connectivity has {} values",
+                    conn.values.len()
+                ),
+            ));
+        }
+        for (k, &i) in conn.values.iter().enumerate() {
+            if !(i >= 0.0 && i < npoints as f64) {
+                return Err((
+                    conn.at,
+                    format!("connectivity entry {k} is point {i}, but there are {npoints} points"),
+                ));
+            }
+            mesh.connectivity.push(i as u32);
+        }
+    }
+    for (arrays, n, kind, out) in [
+        (point_data, npoints, "point", &mut mesh.point_data),
+        (cell_data, ncells, "cell", &mut mesh.cell_data),
+    ] {
+        for a in arrays {
+            if a.values.len() != a.components * n {
+                return Err((
+                    a.at,
+                    format!(
+                        "{kind} array {:?} has {} values; {n} {kind}s of {} components need {}",
+                        a.name,
+                        a.values.len(),
+                        a.components,
+                        a.components * n
+                    ),
+                ));
+            }
+            out.push(VtuArray {
+                name: a.name,
+                components: a.components,
+                values: a.values,
+            });
+        }
+    }
+    Ok(mesh)
+}
