@@ -86,6 +86,11 @@ impl Evaluator {
             if let Some(&id) = generic.and_then(|n| scratch.smooth.get(&n)) {
                 return Prepared::Special(corner as u8, id, Box::from(&scratch.around[..]));
             }
+            // The label table has one slot per vertex of the refined net,
+            // all NONE between uses: allocated on first need.
+            if scratch.labels.is_empty() {
+                scratch.labels = vec![NONE; topo.num_vertices()];
+            }
             Key::around_into(
                 topo,
                 features,
@@ -114,16 +119,25 @@ impl Evaluator {
         let mut cache = Cache::default();
         let (mut regular_patches, mut special) = (Vec::new(), Vec::new());
         let mut patches = Vec::with_capacity(ntris);
+        // One label table per pool thread for the whole build: it has a
+        // slot per refined vertex, and allocating (and the kernel zeroing)
+        // it per chunk cost more than everything else on a 5M-triangle net.
+        let tables: Vec<std::sync::Mutex<Vec<u32>>> = (0..rayon::current_num_threads())
+            .map(|_| Default::default())
+            .collect();
         for start in (0..ntris).step_by(block) {
             let prepared: Vec<(Vec<Prepared>, Vec<Key>)> = (start..(start + block).min(ntris))
                 .collect::<Vec<_>>()
                 .par_chunks(CHUNK)
                 .map(|chunk| {
+                    let table = &tables[rayon::current_thread_index().unwrap_or(0) % tables.len()];
+                    let mut labels = table.lock().unwrap_or_else(|e| e.into_inner());
                     let mut scratch = Scratch {
-                        labels: vec![NONE; topo.num_vertices()],
+                        labels: std::mem::take(&mut *labels),
                         ..Default::default()
                     };
                     let prepared = chunk.iter().map(|&t| prepare(t, &mut scratch)).collect();
+                    *labels = scratch.labels;
                     (prepared, scratch.keys)
                 })
                 .collect();
