@@ -245,10 +245,15 @@ fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
             snapped <= bound * (1.0 + 1e-9),
             "{name}: the bound is below the snap"
         );
-        // Pig's few small angles sit next to its boundary holes of three
-        // and four edges, where the limit boundary curve turns sharply.
-        assert!(q.min_angle >= 5.0, "{name}: min angle {}", q.min_angle);
-        assert!(q.below_20 <= 1e-3, "{name}: {} below 20°", q.below_20);
+        // Nothing below 20°; mean-min at the 50° but on fandisk,
+        // whose coarse graded mesh against many creases reaches 48.7°.
+        assert!(q.min_angle >= 20.0, "{name}: min angle {}", q.min_angle);
+        let mean_min = if name == "fandisk" { 48.5 } else { 50.0 };
+        assert!(
+            q.mean_min_angle >= mean_min,
+            "{name}: mean-min {}",
+            q.mean_min_angle
+        );
         check_invariants(name, &surface, &mesh);
     }
 }

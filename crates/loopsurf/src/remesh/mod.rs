@@ -211,6 +211,7 @@ impl<'a> Remesher<'a> {
                 work.relax();
             }
             for _ in 0..POLISH {
+                work.remove_caps();
                 work.flip_for_angles();
                 work.relax();
             }

@@ -13,6 +13,11 @@ use crate::refine::SurfacePoint;
 use crate::surface::Surface;
 use glam::DVec3;
 
+/// Halvings of [`Placer::balanced_on_curve`]'s search: the curve vertex
+/// lands within 2⁻²⁰ of its span from the balance point, far below what
+/// relaxation needs.
+const BISECTIONS: usize = 20;
+
 /// What constrains a vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Kind {
@@ -161,6 +166,51 @@ impl<'a> Placer<'a> {
             Some(p) if p.x.distance(target) < halfway.x.distance(target) => p,
             _ => halfway,
         })
+    }
+
+    /// The vertex on curve `curve` between its neighbours along it (at
+    /// parameters t0 and t1, positions x0 and x1) that is as far from one
+    /// as from the other, on the arc through its own t: found by bisection
+    /// on the difference of the two distances, which runs from negative at
+    /// t0 to positive at t1. Where the curve turns sharply between the
+    /// neighbours, this stays at the turn; the projection of their chord's
+    /// midpoint would slide down one arm, and a later collapse would cut
+    /// the turn off.
+    pub fn balanced_on_curve(
+        &self,
+        curve: u32,
+        t: f64,
+        [t0, t1]: [f64; 2],
+        [x0, x1]: [DVec3; 2],
+    ) -> Option<Vertex> {
+        let c = &self.surface.model().curves()[curve as usize];
+        let n = c.len() as f64;
+        let span = if c.is_closed() {
+            let forward = (t1 - t0).rem_euclid(n);
+            if (t - t0).rem_euclid(n) < forward {
+                forward
+            } else {
+                forward - n
+            }
+        } else {
+            t1 - t0
+        };
+        let at = |s: f64| {
+            let t = t0 + s * span;
+            self.at_curve(curve, if c.is_closed() { t.rem_euclid(n) } else { t })
+                .ok()
+        };
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..BISECTIONS {
+            let mid = 0.5 * (lo + hi);
+            let x = at(mid)?.x;
+            if x.distance(x0) < x.distance(x1) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        at(0.5 * (lo + hi))
     }
 
     /// The vertex at parameter t of a curve: its surface point on the
