@@ -11,13 +11,12 @@ Standard library only.
 `scripts/pictures.sh` makes the README's picture with it.
 """
 
-import math
 import sys
 import xml.etree.ElementTree as ET
 
-VIEW = (0.35, -0.45, -0.82)  # from the camera towards the scene
+from view3d import PANEL, VIEW, cross, dot, sub, unit
+
 LIGHT = (-0.3, 0.5, 0.8)  # towards the light
-PANEL = 420  # pixels per panel
 EDGE_SAMPLES = 4  # points per node interval along a curved edge
 
 
@@ -66,23 +65,6 @@ def order_of(n):
     while (k + 1) * (k + 2) // 2 < n:
         k += 1
     return k
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def unit(a):
-    n = math.sqrt(dot(a, a)) or 1.0
-    return (a[0] / n, a[1] / n, a[2] / n)
 
 
 def element_map(k, nodes, x, y):

@@ -12,8 +12,8 @@ Orthographic view along VIEW (below), painter's order, back faces dropped.
 import math
 import sys
 
-VIEW = (0.35, -0.45, -0.82)  # from the camera towards the scene
-PANEL = 420  # pixels per panel
+from view3d import PANEL, VIEW, cross, dot, sub, unit
+
 
 
 def read_off(path):
@@ -30,23 +30,6 @@ def read_off(path):
         tris.append(tuple(int(w) for w in words[pos + 1 : pos + 1 + k]))
         pos += 1 + k
     return points, tris
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def unit(a):
-    n = math.sqrt(dot(a, a))
-    return (a[0] / n, a[1] / n, a[2] / n)
 
 
 def min_angle(p, q, r):
