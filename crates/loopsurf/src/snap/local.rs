@@ -147,8 +147,9 @@ pub(crate) fn descend_walking(
     w: f64,
     in_face: bool,
 ) -> (Snap, bool) {
-    let face_of = surface.model().face_of_triangle();
-    let face = face_of[tri];
+    // Only a walk kept in its face needs the model (built on first use).
+    let faces = in_face.then(|| surface.model().face_of_triangle());
+    let face = faces.map(|f| f[tri]);
     let mut start = Start::new(surface, tri, DVec2::new(v, w));
     let mut best: Option<(Snap, bool)> = None;
     // Whether this solve goes on with a step carried into its triangle.
@@ -190,7 +191,7 @@ pub(crate) fn descend_walking(
                 .find(|&k| (end - CORNERS[k]).abs().max_element() < 1e-6)
                 .and_then(|k| downhill_around(surface, p, tri, k)),
         }
-        .filter(|&(next, _)| !in_face || face_of[next] == face);
+        .filter(|&(next, _)| faces.map_or(true, |f| Some(f[next]) == face));
         match next {
             Some((next, next_uv)) => start = Start::new(surface, next, next_uv),
             None => break,
