@@ -1,8 +1,8 @@
 //! `ls_adapt`: adaptive Loop subdivision through the C ABI.
 
-use crate::buffers::{levels_arg, Blocks, MeshArrays};
+use crate::buffers::{levels_arg, Blocks, MeshArrays, MeshOutputs};
 use crate::ls_surface;
-use crate::status::{input, output, run, Fail, LS_ERR_INVALID_ARGUMENT};
+use crate::status::{input, run, Fail, LS_ERR_INVALID_ARGUMENT};
 use std::ffi::c_int;
 
 /// Adaptive Loop subdivision of the surface's control net, `levels` times
@@ -36,14 +36,7 @@ pub unsafe extern "C" fn ls_adapt(
 ) -> c_int {
     run("ls_adapt", || {
         let surface = &input(surface, "surface")?.0;
-        let outs = (
-            output(nverts, "nverts")?,
-            output(xyz, "xyz")?,
-            output(ntris, "ntris")?,
-            output(tris, "tris")?,
-            output(vertex_tri, "vertex_tri")?,
-            output(vertex_vw, "vertex_vw")?,
-        );
+        let outs = MeshOutputs::check(nverts, xyz, ntris, tris, vertex_tri, vertex_vw)?;
         if angle.is_nan() || tolerance.is_nan() {
             return Err(Fail::new(
                 LS_ERR_INVALID_ARGUMENT,
@@ -78,12 +71,7 @@ pub unsafe extern "C" fn ls_adapt(
             &adapted.params,
         )?;
         blocks.hand_over();
-        *outs.0 = points.len();
-        *outs.1 = arrays.xyz;
-        *outs.2 = adapted.net.triangles().len();
-        *outs.3 = arrays.tris;
-        *outs.4 = arrays.vertex_tri;
-        *outs.5 = arrays.vertex_vw;
+        outs.write(arrays, points.len(), adapted.net.triangles().len());
         Ok(())
     })
 }

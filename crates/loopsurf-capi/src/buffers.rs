@@ -87,6 +87,49 @@ impl MeshArrays {
     }
 }
 
+/// The six outputs of a function that hands over a mesh on the surface
+/// (`ls_mesh`, `ls_remesh`, `ls_adapt`): checked non-NULL before any work,
+/// written only once everything succeeded.
+pub(crate) struct MeshOutputs {
+    nverts: *mut usize,
+    xyz: *mut *mut f64,
+    ntris: *mut usize,
+    tris: *mut *mut i32,
+    vertex_tri: *mut *mut i32,
+    vertex_vw: *mut *mut f64,
+}
+
+impl MeshOutputs {
+    pub(crate) fn check(
+        nverts: *mut usize,
+        xyz: *mut *mut f64,
+        ntris: *mut usize,
+        tris: *mut *mut i32,
+        vertex_tri: *mut *mut i32,
+        vertex_vw: *mut *mut f64,
+    ) -> Result<MeshOutputs, Fail> {
+        Ok(MeshOutputs {
+            nverts: output(nverts, "nverts")?,
+            xyz: output(xyz, "xyz")?,
+            ntris: output(ntris, "ntris")?,
+            tris: output(tris, "tris")?,
+            vertex_tri: output(vertex_tri, "vertex_tri")?,
+            vertex_vw: output(vertex_vw, "vertex_vw")?,
+        })
+    }
+
+    /// Hands `arrays` (of `nverts` vertices and `ntris` triangles) to the
+    /// caller; after [`Blocks::hand_over`].
+    pub(crate) unsafe fn write(self, arrays: MeshArrays, nverts: usize, ntris: usize) {
+        *self.nverts = nverts;
+        *self.xyz = arrays.xyz;
+        *self.ntris = ntris;
+        *self.tris = arrays.tris;
+        *self.vertex_tri = arrays.vertex_tri;
+        *self.vertex_vw = arrays.vertex_vw;
+    }
+}
+
 /// A level count from C: 0 or more (the library caps it).
 pub(crate) fn levels_arg(levels: c_int) -> Result<u32, Fail> {
     u32::try_from(levels).map_err(|_| {

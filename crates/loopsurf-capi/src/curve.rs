@@ -101,7 +101,8 @@ pub unsafe extern "C" fn ls_curve(
             blocks.copy(&vw)?,
             blocks.copy(&elems)?,
         );
-        let min_jacobian = curved.validity().min;
+        // Only when asked: it samples every element.
+        let min_jacobian = (!min_scaled_jacobian.is_null()).then(|| curved.validity().min);
         blocks.hand_over();
         *outs.0 = curved.nodes.len();
         *outs.1 = ptrs.0;
@@ -115,8 +116,8 @@ pub unsafe extern "C" fn ls_curve(
         if !largest_move.is_null() {
             *largest_move = onto.largest_move;
         }
-        if !min_scaled_jacobian.is_null() {
-            *min_scaled_jacobian = min_jacobian;
+        if let Some(j) = min_jacobian {
+            *min_scaled_jacobian = j;
         }
         Ok(())
     })

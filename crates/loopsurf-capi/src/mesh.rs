@@ -7,7 +7,7 @@
 //! is, cost nothing to callers who do not want them, and apply to any mesh
 //! whose vertices carry their (tri, v, w), e.g. ls_adapt's.
 
-use crate::buffers::{Blocks, MeshArrays};
+use crate::buffers::{Blocks, MeshArrays, MeshOutputs};
 use crate::ls_surface;
 use crate::status::{input, output, run, Fail, LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT};
 use loopsurf::remesh::DEFAULT_GRADATION;
@@ -46,14 +46,7 @@ pub unsafe extern "C" fn ls_mesh(
 ) -> c_int {
     run("ls_mesh", || {
         let surface = &input(surface, "surface")?.0;
-        let outs = (
-            output(nverts, "nverts")?,
-            output(xyz, "xyz")?,
-            output(ntris, "ntris")?,
-            output(tris, "tris")?,
-            output(vertex_tri, "vertex_tri")?,
-            output(vertex_vw, "vertex_vw")?,
-        );
+        let outs = MeshOutputs::check(nverts, xyz, ntris, tris, vertex_tri, vertex_vw)?;
         let bad = |m: String| Err(Fail::new(LS_ERR_INVALID_ARGUMENT, m));
         if uniform < 0 {
             return bad(format!("uniform = {uniform}: must be ≥ 1, or 0 for none"));
@@ -102,12 +95,7 @@ pub unsafe extern "C" fn ls_mesh(
             blocks.copy(&corners)?
         };
         blocks.hand_over();
-        *outs.0 = mesh.points.len();
-        *outs.1 = arrays.xyz;
-        *outs.2 = mesh.triangles.len();
-        *outs.3 = arrays.tris;
-        *outs.4 = arrays.vertex_tri;
-        *outs.5 = arrays.vertex_vw;
+        outs.write(arrays, mesh.points.len(), mesh.triangles.len());
         if !tri_chart.is_null() {
             *tri_chart = charts_out;
         }
@@ -167,14 +155,7 @@ pub unsafe extern "C" fn ls_remesh(
 ) -> c_int {
     run("ls_remesh", || {
         let surface = &input(surface, "surface")?.0;
-        let outs = (
-            output(nverts, "nverts")?,
-            output(xyz, "xyz")?,
-            output(ntris, "ntris")?,
-            output(tris, "tris")?,
-            output(vertex_tri, "vertex_tri")?,
-            output(vertex_vw, "vertex_vw")?,
-        );
+        let outs = MeshOutputs::check(nverts, xyz, ntris, tris, vertex_tri, vertex_vw)?;
         let bad = |m: String| Err(Fail::new(LS_ERR_INVALID_ARGUMENT, m));
         if !(size.is_finite() && size >= 0.0) {
             return bad(format!("size = {size}: must be positive, or 0 for none"));
@@ -221,12 +202,7 @@ pub unsafe extern "C" fn ls_remesh(
             blocks.copy(&faces)?
         };
         blocks.hand_over();
-        *outs.0 = mesh.points.len();
-        *outs.1 = arrays.xyz;
-        *outs.2 = mesh.triangles.len();
-        *outs.3 = arrays.tris;
-        *outs.4 = arrays.vertex_tri;
-        *outs.5 = arrays.vertex_vw;
+        outs.write(arrays, mesh.points.len(), mesh.triangles.len());
         if !tri_face.is_null() {
             *tri_face = faces_out;
         }
