@@ -115,18 +115,18 @@ pub fn onto_surface(
 
     // The curve of each feature edge, and the curves at each vertex.
     let curves = surface.model().curves();
+    let mut between: HashMap<Sides, Vec<u32>> = HashMap::new();
+    for (c, curve) in curves.iter().enumerate() {
+        let mut pair = curve.faces;
+        pair.sort();
+        between.entry(pair).or_default().push(c as u32);
+    }
     let mut vertex_curves: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
     for &((a, b), mut pair) in &feature_edges {
         pair.sort();
-        let candidates: Vec<u32> = (0..curves.len() as u32)
-            .filter(|&c| {
-                let mut f = curves[c as usize].faces;
-                f.sort();
-                f == pair
-            })
-            .collect();
+        let candidates = between.get(&pair).map_or(&[][..], |c| &c[..]);
         let mid = 0.5 * (moved[a as usize] + moved[b as usize]);
-        let curve = match candidates.as_slice() {
+        let curve = match candidates {
             [] => {
                 return Err(Error::InvalidArgument(format!(
                     "edge ({a}, {b}) separates faces {:?} and {:?}, which no curve of the model separates: are the hard edges flagged as when this mesh was made (--hard-angle)?",
@@ -136,7 +136,7 @@ pub fn onto_surface(
             [c] => *c,
             _ => {
                 let mut best = (f64::INFINITY, candidates[0]);
-                for &c in &candidates {
+                for &c in candidates {
                     let d = surface.curve_closest_point(c as usize, mid)?.distance;
                     if d < best.0 {
                         best = (d, c);

@@ -213,6 +213,18 @@ impl SurfaceMesh {
         }
 
         let inner = k.saturating_sub(1);
+        // The indices, among the edge nodes, of edge (a, b)'s inner nodes
+        // from a to b (they are stored from the lower vertex to the higher).
+        let along = |a: u32, b: u32| {
+            let first = edge_of(a, b) * inner;
+            (0..inner).map(move |i| {
+                if a < b {
+                    first + i
+                } else {
+                    first + inner - 1 - i
+                }
+            })
+        };
         let edge_nodes: Vec<Node> = sides
             .par_iter()
             .zip(hard.par_iter())
@@ -243,13 +255,7 @@ impl SurfaceMesh {
                 let mut boundary: Vec<DVec3> =
                     tri.iter().map(|&v| self.points[v as usize]).collect();
                 for s in 0..3 {
-                    let (a, b) = (tri[s], tri[(s + 1) % 3]);
-                    let first = edge_of(a, b) * inner;
-                    let mut ids: Vec<usize> = (first..first + inner).collect();
-                    if a > b {
-                        ids.reverse();
-                    }
-                    boundary.extend(ids.iter().map(|&i| edge_nodes[i].0));
+                    boundary.extend(along(tri[s], tri[(s + 1) % 3]).map(|i| edge_nodes[i].0));
                 }
                 interior
                     .iter()
@@ -273,14 +279,7 @@ impl SurfaceMesh {
         for (t, tri) in self.triangles.iter().enumerate() {
             triangles.extend(tri);
             for s in 0..3 {
-                let (a, b) = (tri[s], tri[(s + 1) % 3]);
-                let first = edge_base + edge_of(a, b) * inner;
-                let ids = (0..inner).map(|i| (first + i) as u32);
-                if a < b {
-                    triangles.extend(ids);
-                } else {
-                    triangles.extend(ids.rev());
-                }
+                triangles.extend(along(tri[s], tri[(s + 1) % 3]).map(|i| (edge_base + i) as u32));
             }
             let first = interior_base + t * interior.len();
             triangles.extend((first..first + interior.len()).map(|i| i as u32));
@@ -288,13 +287,7 @@ impl SurfaceMesh {
         let mut lines = Vec::with_capacity((k + 1) * curve_edges.pairs.len());
         for &[a, b] in &curve_edges.pairs {
             lines.extend([a, b]);
-            let first = edge_base + edge_of(a, b) * inner;
-            let ids = (0..inner).map(|i| (first + i) as u32);
-            if a < b {
-                lines.extend(ids);
-            } else {
-                lines.extend(ids.rev());
-            }
+            lines.extend(along(a, b).map(|i| (edge_base + i) as u32));
         }
 
         let mut nodes = self.points.clone();
