@@ -156,6 +156,18 @@ impl<'a> Remeshing<'a> {
         fresh > f64::NEG_INFINITY && fresh >= worst(&mut old.into_iter())
     }
 
+    /// The worse smallest-angle cosine of the two triangles (a, b, c) and
+    /// (b, a, d) on edge a–b, and of the two after flipping it to c–d.
+    fn flip_cosines(&self, [a, b, c, d]: [u32; 4]) -> (f64, f64) {
+        let old = self
+            .worst_cosine([a, b, c], None)
+            .max(self.worst_cosine([b, a, d], None));
+        let new = self
+            .worst_cosine([a, d, c], None)
+            .max(self.worst_cosine([d, b, c], None));
+        (old, new)
+    }
+
     /// The smallest angle's cosine (larger is worse) of triangle `ids`.
     fn worst_cosine(&self, ids: [u32; 3], moved: Moved) -> f64 {
         let [a, b, c] = ids.map(|v| self.point(v, moved));
@@ -496,12 +508,7 @@ impl<'a> Remeshing<'a> {
                 continue;
             }
             // Valence is worth a worse angle only up to a point.
-            let old = self
-                .worst_cosine([a, b, c], None)
-                .max(self.worst_cosine([b, a, d], None));
-            let new = self
-                .worst_cosine([a, d, c], None)
-                .max(self.worst_cosine([d, b, c], None));
+            let (old, new) = self.flip_cosines([a, b, c, d]);
             if new > old.max(FLIP_WORST_COSINE) {
                 continue;
             }
@@ -541,12 +548,7 @@ impl<'a> Remeshing<'a> {
             let g = self.mesh.opposite(h);
             let [a, b, c] = self.mesh.corners(h);
             let d = self.mesh.origin(prev(g));
-            let old = self
-                .worst_cosine([a, b, c], None)
-                .max(self.worst_cosine([b, a, d], None));
-            let new = self
-                .worst_cosine([a, d, c], None)
-                .max(self.worst_cosine([d, b, c], None));
+            let (old, new) = self.flip_cosines([a, b, c, d]);
             if new < old - 1e-9 && self.flip_allowed(h) {
                 let (s, u) = (h - h % 3, g - g % 3);
                 self.mesh.flip(h);
