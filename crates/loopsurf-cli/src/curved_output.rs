@@ -68,18 +68,11 @@ pub fn write_curved(
                 &[("scaled_jacobian", DataArray::F64(&jacobian))],
             )
         }
-        None => io::write_mesh(path, &curved.nodes, &linear_triangles(curved)),
+        None => Err(Error::InvalidArgument(format!(
+            "{}: curved elements go to .msh or .vtu",
+            path.display()
+        ))),
     }
-}
-
-/// The corner vertices of each element: its flat triangle.
-fn linear_triangles(curved: &CurvedMesh) -> Vec<[u32; 3]> {
-    (0..curved.len())
-        .map(|t| {
-            let e = curved.element(t);
-            [e[0], e[1], e[2]]
-        })
-        .collect()
 }
 
 /// The summary's lines on a curved mesh: nodes, and the scaled Jacobian
