@@ -117,6 +117,9 @@ fn torus_chart_meshes_converge_at_order_k_plus_one() {
                         d <= 1e-13 * diagonal,
                         "order {k} triangle {t}: node {node} off gmsh's layout by {d:e}"
                     );
+                    // The element map interpolates its nodes.
+                    let mapped = curved.map(t, x, y)[0];
+                    assert!(mapped.distance(curved.nodes[*node as usize]) <= 1e-13 * diagonal);
                 }
             }
             let validity = curved.validity();
