@@ -574,8 +574,10 @@ const char *ls_last_error(void);
 // required pointer was NULL"`; a static string, never NULL.
 const char *ls_status_string(int status);
 
-// Freezes a net into an immutable surface, precomputing every triangle's
-// evaluation data. The net is copied: it may be changed or freed after.
+// Freezes a net into an immutable surface. The net is copied: it may be
+// changed or freed after. The build refines the net once; each triangle's
+// evaluation data is made the first time a query reaches it (any thread
+// may query at any time, and results do not depend on the order).
 int ls_surface_build(const ls_net *net, ls_surface **out);
 
 // Like `ls_surface_build`, but the surface passes through the net's points

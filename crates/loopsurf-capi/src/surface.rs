@@ -7,8 +7,10 @@ use loopsurf::{DVec3, Surface, SurfaceMode};
 use rayon::prelude::*;
 use std::ffi::c_int;
 
-/// Freezes a net into an immutable surface, precomputing every triangle's
-/// evaluation data. The net is copied: it may be changed or freed after.
+/// Freezes a net into an immutable surface. The net is copied: it may be
+/// changed or freed after. The build refines the net once; each triangle's
+/// evaluation data is made the first time a query reaches it (any thread
+/// may query at any time, and results do not depend on the order).
 #[no_mangle]
 pub unsafe extern "C" fn ls_surface_build(net: *const ls_net, out: *mut *mut ls_surface) -> c_int {
     run("ls_surface_build", || {

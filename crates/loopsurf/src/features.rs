@@ -59,6 +59,10 @@ impl Features {
     pub fn is_hard_edge(&self, e: usize) -> bool {
         self.hard_edge[e]
     }
+    /// Bytes held.
+    pub fn memory_bytes(&self) -> usize {
+        self.hard_edge.len() + self.tagged_vertex.len()
+    }
     /// Whether vertex v was tagged hard (a corner).
     pub fn is_tagged_vertex(&self, v: usize) -> bool {
         self.tagged_vertex[v]

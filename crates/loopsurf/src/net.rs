@@ -168,6 +168,11 @@ impl ControlNet {
         }
     }
 
+    /// The positions, connectivity and hard features, taken apart.
+    pub(crate) fn into_parts(self) -> (Vec<DVec3>, std::sync::Arc<Topology>, Features) {
+        (self.points, self.topo, self.features)
+    }
+
     /// The same net (topology and hard features) with other vertex
     /// positions, one per vertex, taken as they are.
     pub(crate) fn with_points(&self, points: Vec<DVec3>) -> ControlNet {

@@ -11,7 +11,7 @@ use crate::features::Features;
 use crate::features::VertexKind;
 use crate::net::{ControlNet, NeighbourSums};
 use crate::rules;
-use crate::topology::{corner_of, Topology, NONE};
+use crate::topology::{corner_of, Topology, MIN_PER_TASK, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -133,17 +133,22 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
     for level in 0..levels {
         let topo = current.topology();
         // New vertices on edges: the midpoint of the edge in its first triangle.
-        origins.par_extend((0..topo.num_edges()).into_par_iter().map(|e| {
-            let t = topo.edge_triangles()[e][0] as usize;
-            let c = topo.triangles()[t];
-            let p = corner_params(t, level, full);
-            let [a, b] = topo.edges()[e].map(|v| p[corner_of(c, v) as usize]);
-            Dyadic {
-                tri: (t >> (2 * level)) as u32,
-                i: (a[0] + b[0]) / 2,
-                j: (a[1] + b[1]) / 2,
-            }
-        }));
+        origins.par_extend(
+            (0..topo.num_edges())
+                .into_par_iter()
+                .with_min_len(MIN_PER_TASK)
+                .map(|e| {
+                    let t = topo.edge_triangles()[e][0] as usize;
+                    let c = topo.triangles()[t];
+                    let p = corner_params(t, level, full);
+                    let [a, b] = topo.edges()[e].map(|v| p[corner_of(c, v) as usize]);
+                    Dyadic {
+                        tri: (t >> (2 * level)) as u32,
+                        i: (a[0] + b[0]) / 2,
+                        j: (a[1] + b[1]) / 2,
+                    }
+                }),
+        );
         current = subdivide(&current);
     }
     Ok(Refinement {
@@ -198,6 +203,7 @@ pub(crate) fn subdivide_points(
     let (vertex_points, edge_points) = new_points.split_at_mut(points.len());
     vertex_points
         .par_iter_mut()
+        .with_min_len(MIN_PER_TASK)
         .enumerate()
         .for_each(|(v, out)| {
             let x = points[v];
@@ -209,22 +215,26 @@ pub(crate) fn subdivide_points(
                 VertexKind::Corner => rules::corner_vertex(x),
             }
         });
-    edge_points.par_iter_mut().enumerate().for_each(|(e, out)| {
-        let [a, b] = topo.edges()[e];
-        let (pa, pb) = (points[a as usize], points[b as usize]);
-        let [t0, t1] = topo.edge_triangles()[e];
-        // Boundary edges are always hard, so both triangles exist below.
-        *out = if features.is_hard_edge(e) {
-            rules::hard_edge(pa, pb)
-        } else {
-            // The corner that is neither a nor b, without searching.
-            let opposite = |t: u32| {
-                let [c0, c1, c2] = topo.triangles()[t as usize];
-                points[(c0 ^ c1 ^ c2 ^ a ^ b) as usize]
+    edge_points
+        .par_iter_mut()
+        .with_min_len(MIN_PER_TASK)
+        .enumerate()
+        .for_each(|(e, out)| {
+            let [a, b] = topo.edges()[e];
+            let (pa, pb) = (points[a as usize], points[b as usize]);
+            let [t0, t1] = topo.edge_triangles()[e];
+            // Boundary edges are always hard, so both triangles exist below.
+            *out = if features.is_hard_edge(e) {
+                rules::hard_edge(pa, pb)
+            } else {
+                // The corner that is neither a nor b, without searching.
+                let opposite = |t: u32| {
+                    let [c0, c1, c2] = topo.triangles()[t as usize];
+                    points[(c0 ^ c1 ^ c2 ^ a ^ b) as usize]
+                };
+                rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
             };
-            rules::smooth_edge(pa, pb, opposite(t0), opposite(t1))
-        };
-    });
+        });
     new_points
 }
 

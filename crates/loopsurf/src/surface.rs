@@ -245,7 +245,8 @@ impl Surface {
         self.evaluator.memory_bytes() + self.derived.get().map_or(0, |d| d.memory_bytes())
     }
 
-    /// Number of distinct special-vertex configurations precomputed.
+    /// Number of distinct special-vertex configurations built so far (each
+    /// is built the first time an evaluation needs it).
     pub fn configurations(&self) -> usize {
         self.evaluator.configurations()
     }

@@ -11,6 +11,13 @@ use std::sync::OnceLock;
 /// Marks a missing triangle (the outside of a boundary edge).
 pub const NONE: u32 = u32::MAX;
 
+/// Fewest items per rayon task in per-element loops. Below twice this a
+/// loop runs on the calling thread without touching the pool: the small
+/// local nets of special configurations, built during an evaluation, then
+/// neither wake workers nor let the evaluating thread steal other work
+/// while it builds.
+pub(crate) const MIN_PER_TASK: usize = 1024;
+
 /// Edges and adjacency of a manifold, consistently oriented triangulation.
 #[derive(Debug)]
 pub struct Topology {
@@ -89,15 +96,20 @@ impl Topology {
         // overwritten below.
         let mut edge_tris = vec![[0u32; 2]; 2 * ne + 3 * nt];
         let (halves, inner) = edges.split_at_mut(2 * ne);
-        halves.par_chunks_mut(2).enumerate().for_each(|(e, out)| {
-            let [a, b] = self.edges[e];
-            let m = nv + e as u32;
-            out[0] = [a, m];
-            out[1] = [b, m];
-        });
+        halves
+            .par_chunks_mut(2)
+            .with_min_len(MIN_PER_TASK)
+            .enumerate()
+            .for_each(|(e, out)| {
+                let [a, b] = self.edges[e];
+                let m = nv + e as u32;
+                out[0] = [a, m];
+                out[1] = [b, m];
+            });
         let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
         half_tris
             .par_chunks_mut(2)
+            .with_min_len(MIN_PER_TASK)
             .enumerate()
             .for_each(|(e, out)| {
                 // The half of edge e at vertex v lies in the children at v's
@@ -113,6 +125,7 @@ impl Topology {
             });
         inner_tris
             .par_chunks_mut(3)
+            .with_min_len(MIN_PER_TASK)
             .enumerate()
             .for_each(|(t, out)| {
                 let t = t as u32;
@@ -124,6 +137,7 @@ impl Topology {
             .par_chunks_mut(3)
             .zip(tris.par_chunks_mut(4))
             .zip(tri_edges.par_chunks_mut(4))
+            .with_min_len(MIN_PER_TASK)
             .enumerate()
             .for_each(|(t, ((inner_edges, child_tris), child_edges))| {
                 let c = self.tris[t];
@@ -244,6 +258,21 @@ impl Topology {
         let r = self.rings();
         &r.ring[r.ring_start[v] as usize..r.ring_start[v + 1] as usize]
     }
+    /// Bytes held, rings included once ordered.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        let rings = self.rings.get().map_or(0, |r| {
+            size_of_val(&r.fan_start[..])
+                + size_of_val(&r.fan[..])
+                + size_of_val(&r.ring_start[..])
+                + size_of_val(&r.ring[..])
+        });
+        size_of_val(&self.tris[..])
+            + size_of_val(&self.edges[..])
+            + size_of_val(&self.edge_tris[..])
+            + size_of_val(&self.tri_edges[..])
+            + rings
+    }
     /// Number of edges at v.
     pub fn valence(&self, v: usize) -> usize {
         self.ring(v).len()
@@ -332,11 +361,16 @@ impl Topology {
             .zip(&mut around)
             .map(|(&v, a)| {
                 let (mut fan, mut ring) = (Vec::new(), Vec::new());
-                walk_fan(v, a, &mut fan, &mut ring)
+                walk_fan(v, a, &mut Vec::new(), &mut fan, &mut ring)
                     .expect("a refined manifold triangulation has manifold vertices");
                 ring
             })
             .collect()
+    }
+
+    /// Orders every vertex's ring now rather than on first use.
+    pub(crate) fn order_rings(&self) {
+        self.rings();
     }
 
     fn rings(&self) -> &Rings {
@@ -373,11 +407,11 @@ impl Topology {
         let mut ring_start = Vec::with_capacity(nv + 1);
         let mut ring = Vec::with_capacity(incident.len() + nv / 8);
         ring_start.push(0u32);
-        let mut around = Vec::new();
+        let (mut around, mut prevs) = (Vec::new(), Vec::new());
         for v in 0..nv {
             around.clear();
             around.extend_from_slice(&incident[fan_start[v] as usize..fan_start[v + 1] as usize]);
-            walk_fan(v as u32, &mut around, &mut fan, &mut ring)?;
+            walk_fan(v as u32, &mut around, &mut prevs, &mut fan, &mut ring)?;
             ring_start.push(ring.len() as u32);
         }
         Ok(Rings {
@@ -392,9 +426,58 @@ impl Topology {
 /// Orders one vertex's incident (next, prev, triangle) triples into a
 /// counter-clockwise fan, appending its triangles to `fan` and its
 /// neighbours to `ring`. Fails when they form more than one fan.
+/// [`walk_fan`] by linear search, for the usual small fans: the same
+/// start (a boundary, or the smallest `next`) and the same walk, without
+/// sorting. False, having written nothing, when the fan is not one walk
+/// (the caller then finds out why).
+fn walk_small_fan(around: &[(u32, u32, u32)], fan: &mut Vec<u32>, ring: &mut Vec<u32>) -> bool {
+    let n = around.len();
+    let is_prev = |x: u32| around.iter().any(|a| a.1 == x);
+    let find = |x: u32| around.iter().position(|a| a.0 == x);
+    let boundary = around.iter().position(|a| !is_prev(a.0));
+    let start = boundary.unwrap_or_else(|| (0..n).min_by_key(|&k| around[k].0).unwrap_or(0));
+    let (fan_len, ring_len) = (fan.len(), ring.len());
+    let walked = walk_from(around, start, boundary.is_some(), find, fan, ring);
+    if walked != n {
+        fan.truncate(fan_len);
+        ring.truncate(ring_len);
+    }
+    walked == n
+}
+
+/// Walks a fan from triangle `start`: each triangle's `prev` is the `next`
+/// of the one after it (found by `find`). Pushes the triangles and ring
+/// vertices met (and the far end of a boundary fan) and returns how many
+/// triangles it walked.
+fn walk_from(
+    around: &[(u32, u32, u32)],
+    start: usize,
+    boundary: bool,
+    find: impl Fn(u32) -> Option<usize>,
+    fan: &mut Vec<u32>,
+    ring: &mut Vec<u32>,
+) -> usize {
+    let (mut k, mut walked) = (start, 0);
+    loop {
+        fan.push(around[k].2);
+        ring.push(around[k].0);
+        walked += 1;
+        match find(around[k].1) {
+            Some(j) if j != start && walked < around.len() => k = j,
+            _ => break,
+        }
+    }
+    if boundary {
+        ring.push(around[k].1);
+    }
+    walked
+}
+
+/// `prevs` is scratch space.
 fn walk_fan(
     v: u32,
     around: &mut [(u32, u32, u32)],
+    prevs: &mut Vec<u32>,
     fan: &mut Vec<u32>,
     ring: &mut Vec<u32>,
 ) -> Result<()> {
@@ -402,30 +485,33 @@ fn walk_fan(
     if n == 0 {
         return Ok(());
     }
+    if n <= 16 && walk_small_fan(around, fan, ring) {
+        return Ok(());
+    }
+    walk_sorted_fan(v, around, prevs, fan, ring)
+}
+
+/// [`walk_fan`] for any fan: sorted, then walked by binary search.
+fn walk_sorted_fan(
+    v: u32,
+    around: &mut [(u32, u32, u32)],
+    prevs: &mut Vec<u32>,
+    fan: &mut Vec<u32>,
+    ring: &mut Vec<u32>,
+) -> Result<()> {
+    let n = around.len();
     // Sorted by `next`, the triangle following (next, prev) counter-clockwise
     // is the one whose `next` is our `prev`.
     around.sort_unstable();
-    let mut prevs: Vec<u32> = around.iter().map(|a| a.1).collect();
+    prevs.clear();
+    prevs.extend(around.iter().map(|a| a.1));
     prevs.sort_unstable();
     let is_prev = |x: u32| prevs.binary_search(&x).is_ok();
     // A boundary fan starts where `next` is nobody's `prev`.
     let start = (0..n).find(|&k| !is_prev(around[k].0)).unwrap_or(0);
     let boundary = !is_prev(around[start].0);
     let find = |x: u32| around.binary_search_by_key(&x, |a| a.0).ok();
-    let mut k = start;
-    let mut walked = 0;
-    loop {
-        fan.push(around[k].2);
-        ring.push(around[k].0);
-        walked += 1;
-        match find(around[k].1) {
-            Some(j) if j != start && walked < n => k = j,
-            _ => break,
-        }
-    }
-    if boundary {
-        ring.push(around[k].1);
-    }
+    let walked = walk_from(around, start, boundary, find, fan, ring);
     if walked != n {
         return Err(Error::NonManifoldVertex {
             vertex: v,
@@ -581,6 +667,60 @@ mod tests {
 
     fn square() -> Vec<[u32; 3]> {
         vec![[0, 1, 2], [0, 2, 3]]
+    }
+
+    /// Both walks, on every vertex of `tris`, give the same fan and ring.
+    fn assert_walks_agree(tris: &[[u32; 3]]) {
+        let nv = 1 + tris.iter().flatten().max().copied().unwrap_or(0) as usize;
+        let mut incident = vec![Vec::new(); nv];
+        for (t, c) in tris.iter().enumerate() {
+            for i in 0..3 {
+                incident[c[i] as usize].push((c[(i + 1) % 3], c[(i + 2) % 3], t as u32));
+            }
+        }
+        let mut small_walks = 0;
+        for (v, around) in incident.iter_mut().enumerate() {
+            let (mut fan, mut ring) = (Vec::new(), Vec::new());
+            if !walk_small_fan(around, &mut fan, &mut ring) {
+                continue;
+            }
+            small_walks += 1;
+            let (mut sorted_fan, mut sorted_ring) = (Vec::new(), Vec::new());
+            walk_sorted_fan(
+                v as u32,
+                around,
+                &mut Vec::new(),
+                &mut sorted_fan,
+                &mut sorted_ring,
+            )
+            .unwrap();
+            assert_eq!((fan, ring), (sorted_fan, sorted_ring), "vertex {v}");
+        }
+        assert!(small_walks > 0);
+    }
+
+    #[test]
+    fn small_fans_walk_as_sorted_ones() {
+        // Closed, refined (valences 3 and 6, shuffled numbering).
+        let tetra = Topology::new(4, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).unwrap();
+        assert_walks_agree(tetra.refined().refined().triangles());
+        // Open: a 4 × 4 grid of squares, each cut in two.
+        let grid: Vec<[u32; 3]> = (0..4u32)
+            .flat_map(|i| (0..4u32).map(move |j| (i, j)))
+            .flat_map(|(i, j)| {
+                let at = |a: u32, b: u32| 5 * a + b;
+                [
+                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+                ]
+            })
+            .collect();
+        assert_walks_agree(&grid);
+        // A bipyramid: two apices of valence 12, numbered last.
+        let bipyramid: Vec<[u32; 3]> = (0..12u32)
+            .flat_map(|i| [[i, (i + 1) % 12, 12], [(i + 1) % 12, i, 13]])
+            .collect();
+        assert_walks_agree(&bipyramid);
     }
 
     #[test]

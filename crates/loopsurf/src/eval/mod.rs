@@ -4,6 +4,7 @@
 
 pub mod affine;
 pub mod box_spline;
+mod configurations;
 pub mod regular;
 pub mod special;
 pub mod surface;

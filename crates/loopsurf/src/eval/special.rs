@@ -70,43 +70,18 @@ pub struct Key {
     tagged: Vec<u32>,
 }
 
-/// Builds and shares [`SpecialPatch`]es by configuration.
-#[derive(Default)]
-pub struct Cache {
-    patches: HashMap<Key, std::sync::Arc<SpecialPatch>>,
-}
-
-impl Cache {
-    /// The patch of a configuration, built the first time it is asked for.
-    pub fn get(&mut self, key: Key) -> std::sync::Arc<SpecialPatch> {
-        self.patches
-            .entry(key)
-            .or_insert_with_key(|key| std::sync::Arc::new(key.build()))
-            .clone()
-    }
-
-    /// The patch of triangle (c, p, q) and its neighbourhood (one at a time).
-    #[cfg(test)]
-    pub fn patch(
-        &mut self,
-        topo: &Topology,
-        features: &Features,
-        corner: [u32; 3],
-    ) -> (std::sync::Arc<SpecialPatch>, Vec<u32>) {
-        let mut labels = vec![NONE; topo.num_vertices()];
-        let mut scratch = KeyScratch::default();
-        Key::around_into(topo, features, corner, &mut labels, &mut scratch);
-        let [c, p, q] = corner;
-        (
-            self.get(scratch.key().clone()),
-            neighbourhood(topo, c, p, q),
-        )
-    }
-
-    /// Number of distinct configurations built.
-    pub fn len(&self) -> usize {
-        self.patches.len()
-    }
+/// The patch of triangle (c, p, q) and its neighbourhood, built alone
+/// (tests look at one configuration at a time).
+#[cfg(test)]
+pub fn patch_at(
+    topo: &Topology,
+    features: &Features,
+    corner: [u32; 3],
+) -> (SpecialPatch, Vec<u32>) {
+    let mut scratch = KeyScratch::default();
+    Key::around_into(topo, features, corner, &mut scratch);
+    let [c, p, q] = corner;
+    (scratch.key().build(), neighbourhood(topo, c, p, q))
 }
 
 impl SpecialPatch {
@@ -134,35 +109,32 @@ impl SpecialPatch {
         around: &[u32],
         cell: Cell,
     ) -> ([DVec3; 15], DVec3) {
-        let n = self.size;
-        if cell.rings == 0 {
-            let band = &self.band[cell.k - 1];
-            // In the first ring the band rows apply to the points themselves.
-            let coefficients: [DVec3; 15] = std::array::from_fn(|r| {
-                band[r * n..(r + 1) * n]
-                    .iter()
-                    .zip(around)
-                    .map(|(w, &i)| *w * points[i as usize])
-                    .sum()
-            });
-            return (coefficients, DVec3::ZERO);
-        }
-        // Offsets from the limit point, pushed `rings` levels down with the
-        // cached powers; two scratch vectors on the stack for the usual
-        // valences.
+        // The neighbourhood gathered once (each of the 15 rows reads all of
+        // it), and scratch for pushing it down, on the stack for the usual
+        // valences. The sums run in the same order as over `points`.
         const INLINE: usize = 24;
-        let mut inline = [DVec3::ZERO; 2 * INLINE];
-        let mut heap = Vec::new();
-        let scratch: &mut [DVec3] = if n <= INLINE {
-            &mut inline[..2 * n]
+        let n = self.size;
+        let (mut inline, mut inline_next) = ([DVec3::ZERO; INLINE], [DVec3::ZERO; INLINE]);
+        let (mut heap, mut heap_next) = (Vec::new(), Vec::new());
+        let (mut y, mut next): (&mut [DVec3], &mut [DVec3]) = if n <= INLINE {
+            (&mut inline[..n], &mut inline_next[..n])
         } else {
-            heap.resize(2 * n, DVec3::ZERO);
-            &mut heap
+            heap.resize(n, DVec3::ZERO);
+            heap_next.resize(n, DVec3::ZERO);
+            (&mut heap, &mut heap_next)
         };
-        let (mut y, mut next) = scratch.split_at_mut(n);
-        let limit = self.limit_point(points, around);
         for (out, &i) in y.iter_mut().zip(around) {
-            *out = points[i as usize] - limit;
+            *out = points[i as usize];
+        }
+        if cell.rings == 0 {
+            // In the first ring the band rows apply to the points themselves.
+            return (apply_rows(&self.band[cell.k - 1], y), DVec3::ZERO);
+        }
+        // Below it, to their offsets from the limit point, pushed `rings`
+        // levels down with the cached powers.
+        let limit: DVec3 = self.limit.iter().zip(y.iter()).map(|(w, p)| *w * *p).sum();
+        for p in y.iter_mut() {
+            *p -= limit;
         }
         self.push_down(&mut y, &mut next, cell.rings);
         (self.band_coefficients(cell.k, y), limit)
@@ -396,6 +368,8 @@ fn ring_from(topo: &Topology, v: u32, from: u32) -> impl Iterator<Item = u32> + 
 /// reused buffers, so that looking a configuration up allocates nothing.
 #[derive(Default)]
 pub struct KeyScratch {
+    /// Local label of each labelled net vertex (its place in `global`).
+    labels: HashMap<u32, u32>,
     global: Vec<u32>,
     fan: Vec<u32>,
     key: Key,
@@ -409,48 +383,33 @@ impl KeyScratch {
 }
 
 impl Key {
-    /// A cheap hash of the key (FxHash-style), for per-thread tables.
-    pub fn fast_hash(&self) -> u64 {
-        let mut h = 0u64;
-        let mut add =
-            |x: u32| h = (h.rotate_left(5) ^ x as u64).wrapping_mul(0x517c_c1b7_2722_0a95);
-        add(self.corner[0]);
-        add(self.corner[1]);
-        add(self.tris.len() as u32);
-        self.tris.iter().flatten().for_each(|&x| add(x));
-        add(self.hard.len() as u32);
-        self.hard.iter().flatten().for_each(|&x| add(x));
-        add(self.tagged.len() as u32);
-        self.tagged.iter().for_each(|&x| add(x));
-        h
-    }
-}
-
-impl Key {
     /// The triangles around c and its neighbours, renumbered canonically
     /// from (c, p), with their hard edges and corner tags: everything the
     /// rules of c and its ring read, and all the patch (c, p, q) depends on.
-    /// `labels` is scratch space, one entry per net vertex, all `NONE` on
-    /// entry and on return: labelling is then a lookup, not a search. The
-    /// key lands in `scratch`, whose buffers are reused: no allocation per
-    /// corner once they have grown.
+    /// The key lands in `scratch`, whose buffers are reused: no allocation
+    /// per corner once they have grown.
     pub fn around_into(
         topo: &Topology,
         features: &Features,
         [c, p, q]: [u32; 3],
-        labels: &mut [u32],
         scratch: &mut KeyScratch,
     ) {
         // Label c, its ring from p, then each ring vertex's neighbours in
         // ring order from its smallest-labelled neighbour: a numbering that
         // depends on the configuration only.
-        fn label(labels: &mut [u32], global: &mut Vec<u32>, g: u32) {
-            if labels[g as usize] == NONE {
-                labels[g as usize] = global.len() as u32;
+        fn label(labels: &mut HashMap<u32, u32>, global: &mut Vec<u32>, g: u32) {
+            labels.entry(g).or_insert_with(|| {
                 global.push(g);
-            }
+                global.len() as u32 - 1
+            });
         }
-        let KeyScratch { global, fan, key } = scratch;
+        let KeyScratch {
+            labels,
+            global,
+            fan,
+            key,
+        } = scratch;
+        labels.clear();
         global.clear();
         label(labels, global, c);
         for x in ring_from(topo, c, p) {
@@ -463,13 +422,13 @@ impl Key {
             let ring = topo.ring(x as usize);
             let from = *ring
                 .iter()
-                .min_by_key(|&&r| labels[r as usize])
+                .min_by_key(|&&r| labels.get(&r).copied().unwrap_or(NONE))
                 .unwrap_or(&c);
             for y in ring_from(topo, x, from) {
                 label(labels, global, y);
             }
         }
-        let label_of = |g: u32| labels[g as usize];
+        let label_of = |g: u32| labels.get(&g).copied().unwrap_or(NONE);
         let is_inner = |l: u32| (l as usize) < inner;
         fan.clear();
         for &v in &global[..inner] {
@@ -501,13 +460,10 @@ impl Key {
             (0..inner as u32).filter(|&l| features.is_tagged_vertex(global[l as usize] as usize)),
         );
         key.corner = [p, q].map(label_of);
-        for &g in global.iter() {
-            labels[g as usize] = NONE;
-        }
     }
 
     /// The matrices of this configuration.
-    fn build(&self) -> SpecialPatch {
+    pub(super) fn build(&self) -> SpecialPatch {
         let n0 = 1 + self.tris.iter().flatten().copied().max().unwrap_or(0) as usize;
         let topo = &Topology::new(n0, self.tris.clone())
             .expect("the local net of a manifold net is manifold");

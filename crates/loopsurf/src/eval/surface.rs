@@ -1,234 +1,231 @@
 //! The evaluator: the control net refined once, so that every triangle has
 //! at most one special corner, and per triangle of that level either its
-//! regular box-spline stencil or its special corner's cached configuration.
+//! regular box-spline coefficients or its special corner's shared
+//! configuration.
+//!
+//! Patches are made on first use, a block of control triangles at a time,
+//! by whichever thread evaluates there first. Building
+//! a surface is then one refinement, like OpenSubdiv's factory, and a
+//! solver that reads only part of a large net never pays for the rest.
+//! What a patch holds does not depend on when or where it was made, so
+//! results are the same bits whatever the order of evaluation.
 
 use super::affine::Affine;
 use super::affine::{child_containing, rotation};
-use super::special::{neighbourhood_into, Cache, Cell, Key, KeyScratch, SpecialPatch};
+use super::configurations::{Configurations, CornerScratch};
+use super::special::{neighbourhood_into, Cell, SpecialPatch};
 use super::{box_spline, regular};
+use crate::features::{Features, VertexKind};
 use crate::net::ControlNet;
-use crate::topology::NONE;
+use crate::topology::Topology;
 use glam::DVec3;
 use rayon::prelude::*;
-use std::sync::Arc;
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock, RwLock};
 
-/// How one triangle of the once-refined net is evaluated: an index into
-/// one of the two tables, so that special triangles do not pay for the
-/// space of regular ones.
-#[derive(Debug, Clone, Copy)]
-enum Patch {
-    Regular(u32),
-    Special(u32),
+/// How one triangle of the once-refined net is evaluated.
+#[derive(Clone, Copy)]
+enum Patch<'a> {
+    /// A regular triangle's box-spline coefficients.
+    Regular(&'a [DVec3; 15]),
+    /// A triangle with a special corner.
+    Special(&'a SpecialCorner),
 }
 
-/// A triangle whose corner `corner` is special; `points` is its
-/// neighbourhood in the once-refined net.
-#[derive(Debug)]
+/// A triangle whose corner `corner` is special: its shared configuration
+/// and its neighbourhood in the once-refined net.
 struct SpecialCorner {
     corner: u8,
     patch: Arc<SpecialPatch>,
     points: Box<[u32]>,
 }
 
-/// An evaluator of the limit surface of a control net. Keeps only what
-/// evaluation reads: the once-refined positions, box-spline coefficients of
-/// regular triangles and the neighbourhoods of special corners.
-pub struct Evaluator {
-    points: Vec<DVec3>,
-    patches: Vec<Patch>,
+/// Control triangles whose patches are made together. Memory is laid out
+/// in the order patches are first made, and a block spans a few pages, so
+/// a sweep in triangle order streams through memory however the blocks
+/// were first reached. (Made one triangle at a time, a sweep after a pass
+/// in random order ran a quarter slower than one after a sweep; with
+/// blocks of 4, a tenth.)
+const BLOCK: usize = 8;
+
+/// The patches of the children of a block of control triangles (4 per
+/// triangle, in [`crate::topology::Topology::refined`]'s order), packed:
+/// the coefficients of the regular ones side by side as in one table, so
+/// that evaluation reads as little memory as when all were made up front.
+struct Block {
+    /// Per child, its index in `regular`, or [`SPECIAL`] plus its index in
+    /// `special`.
+    slots: [u8; 4 * BLOCK],
+    regular: Box<[[DVec3; 15]]>,
+    special: Box<[SpecialCorner]>,
+}
+
+const SPECIAL: u8 = 0x80;
+
+impl Block {
+    /// The patch of child `k` of the block's triangle `tri`.
+    fn get(&self, tri: usize, k: usize) -> Patch<'_> {
+        match self.slots[4 * (tri % BLOCK) + k] {
+            i if i < SPECIAL => Patch::Regular(&self.regular[i as usize]),
+            i => Patch::Special(&self.special[(i - SPECIAL) as usize]),
+        }
+    }
+}
+
+thread_local! {
+    /// Buffers for making special patches, reused on each thread.
+    static SCRATCH: RefCell<Scratch> = RefCell::default();
+}
+
+#[derive(Default)]
+struct Scratch {
     regular: Vec<[DVec3; 15]>,
     special: Vec<SpecialCorner>,
-    configurations: usize,
+    around: Vec<u32>,
+    corner: CornerScratch,
+}
+
+/// An evaluator of the limit surface of a control net. Keeps the
+/// positions of the once-refined net and, per control triangle, its
+/// children's patches once they are made.
+pub struct Evaluator {
+    points: Vec<DVec3>,
+    blocks: Box<[OnceLock<Block>]>,
+    /// What making patches reads, released once every patch is made: the
+    /// refined net's connectivity is a fifth of a fully made surface.
+    maker: RwLock<Option<Maker>>,
+    unmade: AtomicUsize,
+    configurations: Configurations,
+}
+
+/// The connectivity and hard features of the once-refined net.
+struct Maker {
+    topo: Arc<Topology>,
+    features: Features,
+    kinds: Vec<VertexKind>,
 }
 
 impl Evaluator {
     pub fn new(net: &ControlNet) -> crate::Result<Evaluator> {
         let fine = net.refine_uniform(1)?.into_net();
-        let (topo, features) = (fine.topology(), fine.features());
+        // Making patches reads the rings: ordered here, in the build.
+        fine.topology().order_rings();
         let kinds = fine.vertex_kinds();
-        // Per level-1 triangle, in parallel: a regular patch's coefficients,
-        // or a special corner's neighbourhood and configuration, looked up
-        // in a per-chunk table of the chunk's distinct keys without
-        // allocating. Then, in order, configurations are shared through the
-        // cache. Blocks of one chunk per thread bound the memory held in
-        // between.
-        // The regular variant is large, but only one block lives at a time.
-        #[allow(clippy::large_enum_variant)]
-        enum Prepared {
-            Regular([DVec3; 15]),
-            Special(u8, u32, Box<[u32]>),
-        }
-        #[derive(Default)]
-        struct Scratch {
-            labels: Vec<u32>,
-            key: KeyScratch,
-            around: Vec<u32>,
-            table: std::collections::HashMap<u64, Vec<u32>>,
-            keys: Vec<Key>,
-            smooth: std::collections::HashMap<usize, u32>,
-            outer: Vec<u32>,
-        }
-        let prepare = |t: usize, scratch: &mut Scratch| {
-            if let Some(s) = regular::stencil(topo, features, &kinds, t) {
-                let control = s.map(|p| p.position(fine.points()));
-                return Prepared::Regular(box_spline::coefficients(&control));
-            }
-            // Child k < 3 of a control triangle has the control vertex at
-            // its corner k; the centre child is always regular.
-            let corner = t % 4;
-            assert!(corner < 3, "centre children are regular");
-            let c = topo.triangles()[t];
-            let [c, p, q] = [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]];
-            neighbourhood_into(topo, c, p, q, &mut scratch.around);
-            // Most special corners are a smooth vertex of valence N among
-            // regular ones, whose key depends on N alone: built once.
-            let generic = generic_smooth_valence(topo, &kinds, c, &mut scratch.outer);
-            if let Some(&id) = generic.and_then(|n| scratch.smooth.get(&n)) {
-                return Prepared::Special(corner as u8, id, Box::from(&scratch.around[..]));
-            }
-            // The label table has one slot per vertex of the refined net,
-            // all NONE between uses: allocated on first need.
-            if scratch.labels.is_empty() {
-                scratch.labels = vec![NONE; topo.num_vertices()];
-            }
-            Key::around_into(
+        let (points, topo, features) = fine.into_parts();
+        let configurations = Configurations::new(points.len());
+        let n = net.triangles().len();
+        Ok(Evaluator {
+            points,
+            blocks: (0..n.div_ceil(BLOCK)).map(|_| OnceLock::new()).collect(),
+            maker: RwLock::new(Some(Maker {
                 topo,
                 features,
-                [c, p, q],
-                &mut scratch.labels,
-                &mut scratch.key,
-            );
-            let key = scratch.key.key();
-            let ids = scratch.table.entry(key.fast_hash()).or_default();
-            let id = match ids.iter().find(|&&i| scratch.keys[i as usize] == *key) {
-                Some(&i) => i,
-                None => {
-                    scratch.keys.push(key.clone());
-                    ids.push(scratch.keys.len() as u32 - 1);
-                    scratch.keys.len() as u32 - 1
-                }
-            };
-            if let Some(n) = generic {
-                scratch.smooth.insert(n, id);
-            }
-            Prepared::Special(corner as u8, id, Box::from(&scratch.around[..]))
-        };
-        const CHUNK: usize = 8192;
-        let block = CHUNK * rayon::current_num_threads();
-        let ntris = topo.num_triangles();
-        let mut cache = Cache::default();
-        let (mut regular_patches, mut special) = (Vec::new(), Vec::new());
-        let mut patches = Vec::with_capacity(ntris);
-        // One label table per pool thread for the whole build: it has a
-        // slot per refined vertex, and allocating (and the kernel zeroing)
-        // it per chunk cost more than everything else on a 5M-triangle net.
-        let tables: Vec<std::sync::Mutex<Vec<u32>>> = (0..rayon::current_num_threads())
-            .map(|_| Default::default())
-            .collect();
-        for start in (0..ntris).step_by(block) {
-            let prepared: Vec<(Vec<Prepared>, Vec<Key>)> = (start..(start + block).min(ntris))
-                .collect::<Vec<_>>()
-                .par_chunks(CHUNK)
-                .map(|chunk| {
-                    let table = &tables[rayon::current_thread_index().unwrap_or(0) % tables.len()];
-                    let mut labels = table.lock().unwrap_or_else(|e| e.into_inner());
-                    let mut scratch = Scratch {
-                        labels: std::mem::take(&mut *labels),
-                        ..Default::default()
-                    };
-                    let prepared = chunk.iter().map(|&t| prepare(t, &mut scratch)).collect();
-                    *labels = scratch.labels;
-                    (prepared, scratch.keys)
-                })
-                .collect();
-            for (prepared, keys) in prepared {
-                // Built on a pool thread: a configuration refines a small
-                // local net with parallel loops, which called from outside
-                // the pool would wake a worker for every one of them (on
-                // pig, more time in futexes than in arithmetic).
-                let shared: Vec<Arc<SpecialPatch>> =
-                    rayon::scope(|_| keys.into_iter().map(|k| cache.get(k)).collect());
-                patches.extend(prepared.into_iter().map(|p| match p {
-                    Prepared::Regular(coefficients) => {
-                        regular_patches.push(coefficients);
-                        Patch::Regular(regular_patches.len() as u32 - 1)
-                    }
-                    Prepared::Special(corner, id, points) => {
-                        special.push(SpecialCorner {
-                            corner,
-                            patch: shared[id as usize].clone(),
-                            points,
-                        });
-                        Patch::Special(special.len() as u32 - 1)
-                    }
-                }));
-            }
-        }
-        regular_patches.shrink_to_fit();
-        special.shrink_to_fit();
-        Ok(Evaluator {
-            points: fine.points().to_vec(),
-            patches,
-            regular: regular_patches,
-            special,
-            configurations: cache.len(),
+                kinds,
+            })),
+            unmade: AtomicUsize::new(n.div_ceil(BLOCK)),
+            configurations,
         })
+    }
+
+    /// The patch of child `k` of control triangle `tri`.
+    fn patch(&self, tri: usize, k: usize) -> Patch<'_> {
+        match self.blocks[tri / BLOCK].get() {
+            Some(block) => block.get(tri, k),
+            None => self.make(tri / BLOCK).get(tri, k),
+        }
+    }
+
+    /// Makes the patches of block `b`. Never waits for another thread:
+    /// two racing to make one block both make it and the first is kept,
+    /// and a thread that steals work while making a configuration and
+    /// meets this block again makes it once more instead of deadlocking.
+    #[cold]
+    #[inline(never)]
+    fn make(&self, b: usize) -> &Block {
+        let cell = &self.blocks[b];
+        let last = {
+            let maker = self.maker.read().unwrap_or_else(|e| e.into_inner());
+            // Released only once every block was set.
+            maker.as_ref().is_some_and(|maker| {
+                let made = maker.block(b, &self.points, &self.configurations);
+                cell.set(made).is_ok() && self.unmade.fetch_sub(1, Ordering::AcqRel) == 1
+            })
+        };
+        if last {
+            *self.maker.write().unwrap_or_else(|e| e.into_inner()) = None;
+        }
+        cell.get()
+            .expect("made above, or by another thread before the maker was released")
+    }
+
+    /// Makes every patch not made yet, in parallel and in triangle order:
+    /// for a caller about to read them all (the snap index), which would
+    /// otherwise make them one at a time in its own order.
+    pub fn make_all(&self) {
+        (0..self.blocks.len())
+            .into_par_iter()
+            .with_min_len(64)
+            .for_each(|b| {
+                self.patch(b * BLOCK, 0);
+            });
     }
 
     /// Which kind of patch serves (v, w) of `tri` (for test messages).
     #[cfg(test)]
     pub fn describe(&self, tri: usize, v: f64, w: f64) -> String {
         let (k, _) = child_containing(v, w);
-        match self.patches[4 * tri + k] {
+        match self.patch(tri, k) {
             Patch::Regular(_) => format!("child {k}: regular"),
-            Patch::Special(i) => {
-                let s = &self.special[i as usize];
-                format!(
-                    "child {k}: special corner {}, neighbourhood {:?}",
-                    s.corner, s.points
-                )
-            }
+            Patch::Special(s) => format!(
+                "child {k}: special corner {}, neighbourhood {:?}",
+                s.corner, s.points
+            ),
         }
     }
 
-    /// Bytes held: the tables, the special-corner neighbourhoods and each
-    /// shared configuration once.
+    /// Bytes held: the once-refined net (its connectivity until every patch
+    /// is made), the patches made so far and each configuration built so
+    /// far once.
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
-        let mut seen = std::collections::HashSet::new();
-        let shared: usize = self
-            .special
+        let made: usize = self
+            .blocks
             .iter()
-            .filter(|s| seen.insert(Arc::as_ptr(&s.patch)))
-            .map(|s| s.patch.memory_bytes())
+            .filter_map(OnceLock::get)
+            .map(|c| {
+                c.regular.len() * size_of::<[DVec3; 15]>()
+                    + c.special
+                        .iter()
+                        .map(|s| size_of::<SpecialCorner>() + s.points.len() * size_of::<u32>())
+                        .sum::<usize>()
+            })
             .sum();
-        self.points.capacity() * size_of::<DVec3>()
-            + self.patches.capacity() * size_of::<Patch>()
-            + self.regular.capacity() * size_of::<[DVec3; 15]>()
-            + self.special.capacity() * size_of::<SpecialCorner>()
-            + self
-                .special
-                .iter()
-                .map(|s| s.points.len() * size_of::<u32>())
-                .sum::<usize>()
-            + shared
+        let maker = self.maker.read().unwrap_or_else(|e| e.into_inner());
+        let maker = maker.as_ref().map_or(0, |m| {
+            m.topo.memory_bytes()
+                + m.features.memory_bytes()
+                + m.kinds.len() * size_of::<VertexKind>()
+        });
+        self.points.len() * size_of::<DVec3>()
+            + maker
+            + self.blocks.len() * size_of::<OnceLock<Block>>()
+            + made
+            + self.configurations.memory_bytes()
     }
 
-    /// Number of distinct special-corner configurations built.
+    /// Number of distinct special-corner configurations built so far.
     pub fn configurations(&self) -> usize {
-        self.configurations
+        self.configurations.len()
     }
 
     /// The special configuration of level-1 child `child` (0 to 2: the one
     /// at corner `child` of control triangle `tri`) with its neighbourhood
     /// in [`Evaluator::refined_points`], or `None` for a regular child.
     pub fn special_corner(&self, tri: usize, child: usize) -> Option<(&SpecialPatch, &[u32])> {
-        match self.patches[4 * tri + child] {
+        match self.patch(tri, child) {
             Patch::Regular(_) => None,
-            Patch::Special(i) => {
-                let s = &self.special[i as usize];
-                Some((&s.patch, &s.points))
-            }
+            Patch::Special(s) => Some((&s.patch, &s.points)),
         }
     }
 
@@ -238,10 +235,9 @@ impl Evaluator {
     /// triangle's (v, w) to that triangle's parameters.
     pub fn bezier_at(&self, tri: usize, v: f64, w: f64) -> Option<([DVec3; 15], Affine)> {
         let (k, to_child) = child_containing(v, w);
-        match self.patches[4 * tri + k] {
-            Patch::Regular(i) => Some((box_spline::bernstein(&self.regular[i as usize]), to_child)),
-            Patch::Special(i) => {
-                let s = &self.special[i as usize];
+        match self.patch(tri, k) {
+            Patch::Regular(coefficients) => Some((box_spline::bernstein(coefficients), to_child)),
+            Patch::Special(s) => {
                 let to_corner = rotation(s.corner as usize).after(&to_child);
                 let (a, b) = to_corner.apply(v, w);
                 let cell = Cell::locate(a, b)?;
@@ -264,10 +260,9 @@ impl Evaluator {
         (ring, limit): (&[DVec3], DVec3),
         (v, w): (f64, f64),
     ) -> Option<([DVec3; 15], Affine)> {
-        let Patch::Special(i) = self.patches[4 * tri + child] else {
+        let Patch::Special(s) = self.patch(tri, child) else {
             return None;
         };
-        let s = &self.special[i as usize];
         let to_corner = rotation(s.corner as usize).after(&super::affine::child(child));
         let (a, b) = to_corner.apply(v, w);
         let cell = Cell::locate(a, b)?;
@@ -285,10 +280,10 @@ impl Evaluator {
     /// regular triangles.
     pub fn point(&self, tri: usize, v: f64, w: f64) -> DVec3 {
         let (k, to_child) = child_containing(v, w);
-        match self.patches[4 * tri + k] {
-            Patch::Regular(i) => {
+        match self.patch(tri, k) {
+            Patch::Regular(coefficients) => {
                 let (s, u) = to_child.apply(v, w);
-                box_spline::eval_point(&self.regular[i as usize], s, u)
+                box_spline::eval_point(coefficients, s, u)
             }
             Patch::Special(_) => match self.eval(tri, v, w) {
                 Ok(d) => d[0],
@@ -302,20 +297,19 @@ impl Evaluator {
     /// exact limit position: the parametrisation is singular there.
     pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
         let (k, to_child) = child_containing(v, w);
-        let t = 4 * tri + k;
-        let points = &self.points;
-        match self.patches[t] {
-            Patch::Regular(i) => {
+        match self.patch(tri, k) {
+            Patch::Regular(coefficients) => {
                 let (s, u) = to_child.apply(v, w);
-                let d = box_spline::eval_coefficients(&self.regular[i as usize], s, u);
+                let d = box_spline::eval_coefficients(coefficients, s, u);
                 Ok(to_child.pull_back(d))
             }
-            Patch::Special(i) => {
+            Patch::Special(special) => {
                 let SpecialCorner {
                     corner,
                     patch,
                     points: around,
-                } = &self.special[i as usize];
+                } = special;
+                let points = &self.points;
                 let map = rotation(*corner as usize).after(&to_child);
                 let (s, u) = map.apply(v, w);
                 let at_vertex = || AtVertex {
@@ -332,6 +326,74 @@ impl Evaluator {
                 }
             }
         }
+    }
+}
+
+impl Maker {
+    /// The patches of block `b`.
+    fn block(&self, b: usize, points: &[DVec3], configurations: &Configurations) -> Block {
+        // Taken out, not borrowed: a thread that steals work while making
+        // a configuration may come back here.
+        let mut scratch = SCRATCH.with(RefCell::take);
+        // Gathered in reused buffers, then boxed at their size.
+        let (mut regular, mut special) = (
+            std::mem::take(&mut scratch.regular),
+            std::mem::take(&mut scratch.special),
+        );
+        // Slots of level-1 triangles past the end (in the last block) are
+        // never read.
+        let children = 4 * b * BLOCK..(4 * (b + 1) * BLOCK).min(self.topo.num_triangles());
+        let mut slots = [0; 4 * BLOCK];
+        for (slot, t) in slots.iter_mut().zip(children) {
+            *slot = match self.patch(t, points, configurations, &mut scratch) {
+                Ok(coefficients) => {
+                    regular.push(coefficients);
+                    regular.len() as u8 - 1
+                }
+                Err(corner) => {
+                    special.push(corner);
+                    SPECIAL + special.len() as u8 - 1
+                }
+            };
+        }
+        let block = Block {
+            slots,
+            regular: regular.drain(..).collect(),
+            special: special.drain(..).collect(),
+        };
+        (scratch.regular, scratch.special) = (regular, special);
+        SCRATCH.with(|s| s.replace(scratch));
+        block
+    }
+
+    /// The box-spline coefficients of triangle `t` of the once-refined
+    /// net, or its special corner.
+    fn patch(
+        &self,
+        t: usize,
+        points: &[DVec3],
+        configurations: &Configurations,
+        scratch: &mut Scratch,
+    ) -> Result<[DVec3; 15], SpecialCorner> {
+        let (topo, features) = (&*self.topo, &self.features);
+        if let Some(s) = regular::stencil(topo, features, &self.kinds, t) {
+            let control = s.map(|p| p.position(points));
+            return Ok(box_spline::coefficients(&control));
+        }
+        // Child k < 3 of a control triangle has the control vertex at its
+        // corner k; the centre child is always regular.
+        let corner = t % 4;
+        debug_assert!(corner < 3, "centre children are regular");
+        let c = topo.triangles()[t];
+        let [c, p, q] = [c[corner], c[(corner + 1) % 3], c[(corner + 2) % 3]];
+        neighbourhood_into(topo, c, p, q, &mut scratch.around);
+        let patch =
+            configurations.of_corner(topo, features, &self.kinds, [c, p, q], &mut scratch.corner);
+        Err(SpecialCorner {
+            corner: corner as u8,
+            patch,
+            points: Box::from(&scratch.around[..]),
+        })
     }
 }
 
@@ -364,37 +426,43 @@ impl<'a> ChartEvaluator<'a> {
         }
     }
 
-    /// The special corner's cell of (v, w), its coefficients and the map
-    /// from (v, w) to the corner's (s, t); `Err` exactly at the vertex.
+    /// The special corner's cell of (v, w) in child `child`, its
+    /// coefficients and the map from (v, w) to the corner's (s, t); `Err`
+    /// exactly at the vertex. `None` when the child is regular.
     fn special(
         &mut self,
         child: usize,
-        i: u32,
         to_child: Affine,
         v: f64,
         w: f64,
-    ) -> Result<(Cell, Affine, usize), AtVertex> {
+    ) -> Option<Result<(Cell, Affine, usize), AtVertex>> {
+        let Patch::Special(special) = self.evaluator.patch(self.tri, child) else {
+            return None;
+        };
         let SpecialCorner {
             corner,
             patch,
             points: around,
-        } = &self.evaluator.special[i as usize];
+        } = special;
+        let points = &self.evaluator.points;
         let map = rotation(*corner as usize).after(&to_child);
         let (s, u) = map.apply(v, w);
         let at_vertex = || AtVertex {
             vertex: around[0],
-            limit: patch.limit_point(&self.evaluator.points, around),
-            normal: patch.normal_at_vertex(&self.evaluator.points, around),
+            limit: patch.limit_point(points, around),
+            normal: patch.normal_at_vertex(points, around),
         };
         if s + u <= 0.0 {
-            return Err(at_vertex());
+            return Some(Err(at_vertex()));
         }
-        let cell = Cell::locate(s, u).ok_or_else(at_vertex)?;
+        let Some(cell) = Cell::locate(s, u) else {
+            return Some(Err(at_vertex()));
+        };
         let key = (child, cell.rings, cell.k);
         let slot = match self.cells.iter().position(|c| c.key == key) {
             Some(slot) => slot,
             None => {
-                let (c, offset) = patch.cell_coefficients(&self.evaluator.points, around, cell);
+                let (c, offset) = patch.cell_coefficients(points, around, cell);
                 self.cells.push(CachedCell {
                     key,
                     coefficients: c,
@@ -403,50 +471,41 @@ impl<'a> ChartEvaluator<'a> {
                 self.cells.len() - 1
             }
         };
-        Ok((cell, map, slot))
+        Some(Ok((cell, map, slot)))
     }
 
     /// X at (v, w); like [`Evaluator::point`].
     pub fn point(&mut self, v: f64, w: f64) -> DVec3 {
         let (k, to_child) = child_containing(v, w);
-        match self.evaluator.patches[4 * self.tri + k] {
-            Patch::Regular(i) => {
-                let (s, u) = to_child.apply(v, w);
-                box_spline::eval_point(&self.evaluator.regular[i as usize], s, u)
+        match self.special(k, to_child, v, w) {
+            None => self.evaluator.point(self.tri, v, w),
+            Some(Ok((cell, _, slot))) => {
+                let CachedCell {
+                    coefficients: c,
+                    offset,
+                    ..
+                } = &self.cells[slot];
+                box_spline::eval_point(c, cell.local.0, cell.local.1) + *offset
             }
-            Patch::Special(i) => match self.special(k, i, to_child, v, w) {
-                Ok((cell, _, slot)) => {
-                    let CachedCell {
-                        coefficients: c,
-                        offset,
-                        ..
-                    } = &self.cells[slot];
-                    let offset = *offset;
-                    box_spline::eval_point(c, cell.local.0, cell.local.1) + offset
-                }
-                Err(at) => at.limit,
-            },
+            Some(Err(at)) => at.limit,
         }
     }
 
     /// X and its derivatives at (v, w); like [`Evaluator::eval`].
     pub fn eval(&mut self, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
         let (k, to_child) = child_containing(v, w);
-        match self.evaluator.patches[4 * self.tri + k] {
-            Patch::Regular(_) => self.evaluator.eval(self.tri, v, w),
-            Patch::Special(i) => {
-                let (cell, map, slot) = self.special(k, i, to_child, v, w)?;
-                let CachedCell {
-                    coefficients: c,
-                    offset,
-                    ..
-                } = &self.cells[slot];
-                let offset = *offset;
-                let mut d = box_spline::eval_coefficients(c, cell.local.0, cell.local.1);
-                d[0] += offset;
-                Ok(map.pull_back(cell.pull_back(d)))
-            }
-        }
+        let (cell, map, slot) = match self.special(k, to_child, v, w) {
+            None => return self.evaluator.eval(self.tri, v, w),
+            Some(found) => found?,
+        };
+        let CachedCell {
+            coefficients: c,
+            offset,
+            ..
+        } = &self.cells[slot];
+        let mut d = box_spline::eval_coefficients(c, cell.local.0, cell.local.1);
+        d[0] += *offset;
+        Ok(map.pull_back(cell.pull_back(d)))
     }
 }
 
@@ -469,46 +528,4 @@ pub struct AtVertex {
     /// The outward unit normal there of the sector the triangle lies in,
     /// when the sector has a tangent plane.
     pub normal: Option<DVec3>,
-}
-
-/// The valence N of c when c is a smooth vertex whose neighbours are all
-/// smooth, of valence 6, and whose second ring is generic (the 2N outer
-/// vertices distinct from each other and from c and its ring): then every
-/// corner at c has the same configuration key, which depends on N alone
-/// (the key reads only the triangles around c and its neighbours, their
-/// hard edges and tags). After one refinement nearly every special corner
-/// of a smooth net is one, so its key need not be built again.
-fn generic_smooth_valence(
-    topo: &crate::topology::Topology,
-    kinds: &[crate::features::VertexKind],
-    c: u32,
-    outer: &mut Vec<u32>,
-) -> Option<usize> {
-    use crate::features::VertexKind::Smooth;
-    if kinds[c as usize] != Smooth {
-        return None;
-    }
-    let ring = topo.ring(c as usize);
-    outer.clear();
-    for &x in ring {
-        if kinds[x as usize] != Smooth || topo.valence(x as usize) != 6 {
-            return None;
-        }
-        let before = outer.len();
-        outer.extend(
-            topo.ring(x as usize)
-                .iter()
-                .filter(|&&y| y != c && !ring.contains(&y)),
-        );
-        // c and its two neighbours beside x, and three outer vertices.
-        if outer.len() != before + 3 {
-            return None;
-        }
-    }
-    outer.sort_unstable();
-    outer.dedup();
-    // Each neighbour's outer vertices at its ends are those of the
-    // neighbours beside it (across their shared edge from c): 2N distinct
-    // ones when nothing else coincides.
-    (outer.len() == 2 * ring.len()).then_some(ring.len())
 }

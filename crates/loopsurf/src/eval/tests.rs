@@ -220,7 +220,7 @@ fn special_matrices_reproduce_one_subdivision_step() {
             let k = tri.iter().position(|&x| x == c).unwrap();
             (tri[(k + 1) % 3], tri[(k + 2) % 3])
         };
-        let (patch, k0) = super::special::Cache::default().patch(topo, l1.features(), [c, p, q]);
+        let (patch, k0) = super::special::patch_at(topo, l1.features(), [c, p, q]);
         let mid = |a: u32, b: u32| l1.points().len() as u32 + topo.find_edge(a, b).unwrap() as u32;
         let k1 = super::special::neighbourhood(l2.topology(), c, mid(c, p), mid(c, q));
         let x0: Vec<DVec3> = k0.iter().map(|&i| l1.points()[i as usize]).collect();

@@ -112,6 +112,8 @@ impl SnapIndex {
     pub(crate) fn new(surface: &Surface) -> SnapIndex {
         let net = surface.net();
         let nt = net.triangles().len();
+        // Every cell below reads its patches.
+        surface.evaluator().make_all();
         let (level, deep) = cutting(nt);
         // The net refined `deep`, `deep` + 1 and `deep` + 2 times.
         let mut cut: Option<Level> = None;

@@ -1,0 +1,186 @@
+//! Special-corner configurations shared by every corner of a surface that
+//! looks the same, each built the first time an evaluation needs it.
+//!
+//! Building one (its local matrix powers) costs about a millisecond, and a
+//! real net has tens to hundreds of distinct ones, so they are neither
+//! built up front nor kept twice: any thread may ask, and the first one
+//! made is shared.
+
+use super::special::{Key, KeyScratch, SpecialPatch};
+use crate::features::{Features, VertexKind};
+use crate::topology::Topology;
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
+
+/// One configuration: made once, then shared.
+type Slot = Arc<OnceLock<Arc<SpecialPatch>>>;
+
+pub(super) struct Configurations {
+    by_key: Mutex<HashMap<Key, Slot>>,
+    /// The configuration of a generic smooth corner, by valence (see
+    /// [`generic_smooth_valence`]): found without building its key.
+    by_valence: Mutex<HashMap<usize, Arc<SpecialPatch>>>,
+    /// Per vertex of the refined net, [`generic_smooth_valence`] once
+    /// known (each special vertex has as many corners as its valence):
+    /// 0 not yet, 1 not generic, else the valence plus 2.
+    generic: Box<[AtomicU8]>,
+}
+
+/// Buffers reused from one corner to the next on a thread.
+#[derive(Default)]
+pub(super) struct CornerScratch {
+    key: KeyScratch,
+    outer: Vec<u32>,
+}
+
+/// The value of `cell`, made by `make` if no thread has set it yet.
+/// Unlike `OnceLock::get_or_init` it never waits: two threads racing to
+/// fill one cell both make it and the first to finish is kept, and a
+/// thread that meets the cell again while making it (by work stealing
+/// inside `make`) makes it once more rather than deadlocking.
+#[inline]
+fn made_once<T>(cell: &OnceLock<T>, make: impl FnOnce() -> T) -> &T {
+    match cell.get() {
+        Some(value) => value,
+        None => make_once(cell, make),
+    }
+}
+
+/// The slow path of [`made_once`], out of line so the fast path inlines.
+#[cold]
+#[inline(never)]
+fn make_once<T>(cell: &OnceLock<T>, make: impl FnOnce() -> T) -> &T {
+    let _ = cell.set(make());
+    cell.get().expect("set just above")
+}
+
+/// A poisoned table is still consistent: entries are only ever added whole.
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+impl Configurations {
+    /// No configurations yet, for a refined net of `vertices` vertices.
+    pub fn new(vertices: usize) -> Configurations {
+        Configurations {
+            by_key: Mutex::default(),
+            by_valence: Mutex::default(),
+            generic: (0..vertices).map(|_| AtomicU8::new(0)).collect(),
+        }
+    }
+
+    /// [`generic_smooth_valence`] of `c`, computed once.
+    fn generic_valence(
+        &self,
+        topo: &Topology,
+        kinds: &[VertexKind],
+        c: u32,
+        outer: &mut Vec<u32>,
+    ) -> Option<usize> {
+        let known = &self.generic[c as usize];
+        match known.load(Ordering::Relaxed) {
+            0 => {
+                let n = generic_smooth_valence(topo, kinds, c, outer);
+                // Valences past 253 are not kept, only computed again.
+                let code = n.map_or(Some(1), |n| u8::try_from(n + 2).ok());
+                if let Some(code) = code {
+                    known.store(code, Ordering::Relaxed);
+                }
+                n
+            }
+            1 => None,
+            code => Some(code as usize - 2),
+        }
+    }
+
+    /// The configuration of the corner triangle (c, p, q) whose corner c is
+    /// special.
+    pub fn of_corner(
+        &self,
+        topo: &Topology,
+        features: &Features,
+        kinds: &[VertexKind],
+        corner: [u32; 3],
+        scratch: &mut CornerScratch,
+    ) -> Arc<SpecialPatch> {
+        let generic = self.generic_valence(topo, kinds, corner[0], &mut scratch.outer);
+        if let Some(patch) = generic.and_then(|n| lock(&self.by_valence).get(&n).cloned()) {
+            return patch;
+        }
+        Key::around_into(topo, features, corner, &mut scratch.key);
+        let key = scratch.key.key();
+        let slot = {
+            let mut by_key = lock(&self.by_key);
+            match by_key.get(key) {
+                Some(slot) => slot.clone(),
+                None => by_key.entry(key.clone()).or_default().clone(),
+            }
+        };
+        let patch = made_once(&slot, || Arc::new(key.build())).clone();
+        if let Some(n) = generic {
+            lock(&self.by_valence).insert(n, patch.clone());
+        }
+        patch
+    }
+
+    /// Number of distinct configurations built so far.
+    pub fn len(&self) -> usize {
+        lock(&self.by_key)
+            .values()
+            .filter(|slot| slot.get().is_some())
+            .count()
+    }
+
+    /// Bytes held by the configurations built so far, and the table of
+    /// generic vertices.
+    pub fn memory_bytes(&self) -> usize {
+        self.generic.len()
+            + lock(&self.by_key)
+                .values()
+                .filter_map(|slot| slot.get())
+                .map(|patch| patch.memory_bytes())
+                .sum::<usize>()
+    }
+}
+
+/// The valence N of c when c is a smooth vertex whose neighbours are all
+/// smooth, of valence 6, and whose second ring is generic (the 2N outer
+/// vertices distinct from each other and from c and its ring): then every
+/// corner at c has the same configuration key, which depends on N alone
+/// (the key reads only the triangles around c and its neighbours, their
+/// hard edges and tags). After one refinement nearly every special corner
+/// of a smooth net is one, so its key need not be built again.
+fn generic_smooth_valence(
+    topo: &Topology,
+    kinds: &[VertexKind],
+    c: u32,
+    outer: &mut Vec<u32>,
+) -> Option<usize> {
+    if kinds[c as usize] != VertexKind::Smooth {
+        return None;
+    }
+    let ring = topo.ring(c as usize);
+    outer.clear();
+    for &x in ring {
+        if kinds[x as usize] != VertexKind::Smooth || topo.valence(x as usize) != 6 {
+            return None;
+        }
+        let before = outer.len();
+        outer.extend(
+            topo.ring(x as usize)
+                .iter()
+                .filter(|&&y| y != c && !ring.contains(&y)),
+        );
+        // c and its two neighbours beside x, and three outer vertices.
+        if outer.len() != before + 3 {
+            return None;
+        }
+    }
+    outer.sort_unstable();
+    outer.dedup();
+    // Each neighbour's outer vertices at its ends are those of the
+    // neighbours beside it (across their shared edge from c): 2N distinct
+    // ones when nothing else coincides.
+    (outer.len() == 2 * ring.len()).then_some(ring.len())
+}
