@@ -687,10 +687,15 @@ impl<'a> Remeshing<'a> {
                 let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
                 let mut face = NONE;
                 for h in self.mesh.outgoing(v) {
-                    let [a, b, c] = self.mesh.corners(h).map(|i| self.vertices[i as usize].x);
-                    let area = (b - a).cross(c - a).length();
-                    sum += area * (a + b + c) / 3.0;
-                    weight += area;
+                    // Centroids weighted by area in units of the local
+                    // size: where sizes grade, plain area would pull every
+                    // vertex towards the coarse side.
+                    let ids = self.mesh.corners(h);
+                    let [a, b, c] = ids.map(|i| self.vertices[i as usize].x);
+                    let size = ids.iter().map(|&i| self.size[i as usize]).sum::<f64>() / 3.0;
+                    let w = (b - a).cross(c - a).length() / (size * size);
+                    sum += w * (a + b + c) / 3.0;
+                    weight += w;
                     face = self.face(h);
                 }
                 if !(weight > 0.0) {
@@ -708,6 +713,7 @@ impl<'a> Remeshing<'a> {
             }
             Kind::Curve { curve, t } => {
                 let mut ends = [DVec3::ZERO; 2];
+                let mut sizes = [0.0; 2];
                 let mut params = [None; 2];
                 let mut count = 0;
                 let mut visit = |h: u32, other: u32| {
@@ -715,6 +721,7 @@ impl<'a> Remeshing<'a> {
                         if count < 2 {
                             let o = &self.vertices[other as usize];
                             ends[count] = o.x;
+                            sizes[count] = self.size[other as usize];
                             params[count] = self.placer.t_on(o, curve, Some(t));
                         }
                         count += 1;
@@ -733,12 +740,19 @@ impl<'a> Remeshing<'a> {
                     return None;
                 };
                 // It stays between its neighbours along the curve, near
-                // their chord's midpoint; where that slides it much nearer
-                // one than the other (down one arm of a sharp turn of a
-                // boundary), at the point as far from both.
-                let near = self
-                    .placer
-                    .on_curve(0.5 * (ends[0] + ends[1]), curve, t, t0, t1)?;
+                // the point of their chord that splits it as their sizes
+                // ask (the midpoint where sizes are uniform); where that
+                // slides it much nearer one than the other (down one arm
+                // of a sharp turn of a boundary), at the point as far from
+                // both.
+                let [w0, w1] = sizes.map(|h| h + self.size[v as usize]);
+                let near = self.placer.on_curve(
+                    (w1 * ends[0] + w0 * ends[1]) / (w0 + w1),
+                    curve,
+                    t,
+                    t0,
+                    t1,
+                )?;
                 let [d0, d1] = ends.map(|x| near.x.distance(x));
                 let boundary = self.placer.surface.model().curves()[curve as usize]
                     .faces
