@@ -137,7 +137,8 @@ impl Curvature {
 }
 
 impl Surface {
-    /// Precomputes every triangle's evaluation data (the net is copied).
+    /// The limit surface of `net` (which is copied): refines it once; each
+    /// triangle's evaluation data is made when a query first reaches it.
     /// Fails only when the once-refined net would not fit 32-bit indices.
     pub fn new(net: &ControlNet) -> Result<Surface> {
         Self::with_mode(net, SurfaceMode::Approximating)
