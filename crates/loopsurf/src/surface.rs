@@ -92,6 +92,7 @@ impl Evaluation {
     }
 
     /// X Xv Xw Xvv Xvw Xww as 18 numbers (EGADS `EG_evaluate` order).
+    #[inline]
     pub fn record(&self) -> [f64; 18] {
         let mut out = [0.0; 18];
         for (i, d) in [self.x, self.xv, self.xw, self.xvv, self.xvw, self.xww]
@@ -253,6 +254,7 @@ impl Surface {
     }
 
     /// Position and first and second derivatives at (v, w) of triangle `tri`.
+    #[inline]
     pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<Evaluation> {
         let (v, w) = self.check(tri, v, w)?;
         let e = self.eval_approximating(tri, v, w);
@@ -316,6 +318,7 @@ impl Surface {
     }
 
     /// The approximating surface at a checked (v, w).
+    #[inline]
     pub(crate) fn eval_approximating(&self, tri: usize, v: f64, w: f64) -> Evaluation {
         evaluation_of(self.evaluator.eval(tri, v, w))
     }
@@ -417,6 +420,7 @@ impl Surface {
     }
 
     /// Validates a query; clamps round-off excursions into the triangle.
+    #[inline]
     fn check(&self, tri: usize, v: f64, w: f64) -> Result<(f64, f64)> {
         let bad = |reason| Err(Error::BadParameter { tri, v, w, reason });
         if tri >= self.net.triangles().len() {
@@ -440,6 +444,7 @@ impl Surface {
 
 /// An evaluator result as an [`Evaluation`]: exactly at a special vertex,
 /// its limit and zero derivatives.
+#[inline]
 fn evaluation_of(r: std::result::Result<[DVec3; 6], AtVertex>) -> Evaluation {
     match r {
         Ok([x, xv, xw, xvv, xvw, xww]) => Evaluation {

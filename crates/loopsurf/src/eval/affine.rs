@@ -18,6 +18,7 @@ impl Affine {
         b: [0.0, 0.0],
     };
 
+    #[inline]
     pub fn apply(&self, v: f64, w: f64) -> (f64, f64) {
         (
             self.m[0][0] * v + self.m[0][1] * w + self.b[0],
@@ -45,6 +46,7 @@ impl Affine {
     /// Derivatives with respect to (s, t), in evaluation-record order
     /// (X, X_s, X_t, X_ss, X_st, X_tt), turned into derivatives with
     /// respect to (v, w).
+    #[inline]
     pub fn pull_back(&self, d: [DVec3; 6]) -> [DVec3; 6] {
         let [[sv, sw], [tv, tw]] = self.m;
         let [x, xs, xt, xss, xst, xtt] = d;
@@ -83,6 +85,7 @@ pub fn child(c: usize) -> Affine {
 }
 
 /// The child of a triangle that holds (v, w), with its map.
+#[inline]
 pub fn child_containing(v: f64, w: f64) -> (usize, Affine) {
     let c = if v >= 0.5 {
         1

@@ -295,6 +295,7 @@ impl Evaluator {
     /// X, Xv, Xw, Xvv, Xvw, Xww at (v, w) of control triangle `tri`, or,
     /// exactly at a special vertex, that vertex (of the refined net) and its
     /// exact limit position: the parametrisation is singular there.
+    #[inline]
     pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
         let (k, to_child) = child_containing(v, w);
         match self.patch(tri, k) {
