@@ -1,23 +1,22 @@
 //! Special-corner configurations shared by every corner of a surface that
 //! looks the same, each built the first time an evaluation needs it.
 //!
-//! Building one (its local matrix powers) costs about a millisecond, and a
-//! real net has tens to hundreds of distinct ones, so they are neither
-//! built up front nor kept twice: any thread may ask, and the first one
-//! made is shared.
+//! Building one (its local matrix powers) takes a fraction of a
+//! millisecond, and a real net has a handful (smooth scans) to hundreds
+//! (parts with creases) of distinct ones, so they are neither built up
+//! front nor kept twice: any thread may ask, none waits for another, and
+//! the first one stored is shared.
 
 use super::special::{Key, KeyScratch, SpecialPatch};
 use crate::features::{Features, VertexKind};
 use crate::topology::Topology;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU8, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
+use std::sync::{Arc, Mutex, MutexGuard};
 
-/// One configuration: made once, then shared.
-type Slot = Arc<OnceLock<Arc<SpecialPatch>>>;
-
+/// The configurations built so far.
 pub(super) struct Configurations {
-    by_key: Mutex<HashMap<Key, Slot>>,
+    by_key: Mutex<HashMap<Key, Arc<SpecialPatch>>>,
     /// The configuration of a generic smooth corner, by valence (see
     /// [`generic_smooth_valence`]): found without building its key.
     by_valence: Mutex<HashMap<usize, Arc<SpecialPatch>>>,
@@ -32,27 +31,6 @@ pub(super) struct Configurations {
 pub(super) struct CornerScratch {
     key: KeyScratch,
     outer: Vec<u32>,
-}
-
-/// The value of `cell`, made by `make` if no thread has set it yet.
-/// Unlike `OnceLock::get_or_init` it never waits: two threads racing to
-/// fill one cell both make it and the first to finish is kept, and a
-/// thread that meets the cell again while making it (by work stealing
-/// inside `make`) makes it once more rather than deadlocking.
-#[inline]
-fn made_once<T>(cell: &OnceLock<T>, make: impl FnOnce() -> T) -> &T {
-    match cell.get() {
-        Some(value) => value,
-        None => make_once(cell, make),
-    }
-}
-
-/// The slow path of [`made_once`], out of line so the fast path inlines.
-#[cold]
-#[inline(never)]
-fn make_once<T>(cell: &OnceLock<T>, make: impl FnOnce() -> T) -> &T {
-    let _ = cell.set(make());
-    cell.get().expect("set just above")
 }
 
 /// A poisoned table is still consistent: entries are only ever added whole.
@@ -110,14 +88,16 @@ impl Configurations {
         }
         Key::around_into(topo, features, corner, &mut scratch.key);
         let key = scratch.key.key();
-        let slot = {
-            let mut by_key = lock(&self.by_key);
-            match by_key.get(key) {
-                Some(slot) => slot.clone(),
-                None => by_key.entry(key.clone()).or_default().clone(),
-            }
-        };
-        let patch = made_once(&slot, || Arc::new(key.build())).clone();
+        let known = lock(&self.by_key).get(key).cloned();
+        // Built with the table unlocked: other threads go on meanwhile, and
+        // one racing to build the same keeps the first one stored.
+        let patch = known.unwrap_or_else(|| {
+            let built = Arc::new(key.build());
+            lock(&self.by_key)
+                .entry(key.clone())
+                .or_insert(built)
+                .clone()
+        });
         if let Some(n) = generic {
             lock(&self.by_valence).insert(n, patch.clone());
         }
@@ -126,10 +106,7 @@ impl Configurations {
 
     /// Number of distinct configurations built so far.
     pub fn len(&self) -> usize {
-        lock(&self.by_key)
-            .values()
-            .filter(|slot| slot.get().is_some())
-            .count()
+        lock(&self.by_key).len()
     }
 
     /// Bytes held by the configurations built so far, and the table of
@@ -138,7 +115,6 @@ impl Configurations {
         self.generic.len()
             + lock(&self.by_key)
                 .values()
-                .filter_map(|slot| slot.get())
                 .map(|patch| patch.memory_bytes())
                 .sum::<usize>()
     }
