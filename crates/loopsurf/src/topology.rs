@@ -473,7 +473,9 @@ fn walk_from(
     walked
 }
 
-/// `prevs` is scratch space.
+/// Orders the triangles `around` v, each as (next, prev, triangle)
+/// counter-clockwise, into one fan, and pushes them and v's ring; fails
+/// when they form more than one fan. `prevs` is scratch space.
 fn walk_fan(
     v: u32,
     around: &mut [(u32, u32, u32)],
