@@ -87,13 +87,12 @@ pub fn patch_at(
 
 impl SpecialPatch {
     /// Evaluates at (s, t) of the triangle (c, p, q), s + t > 0, from the
-    /// positions of the neighbourhood `around` (indices into `points`):
-    /// X, Xs, Xt, Xss, Xst, Xtt.
+    /// positions of its neighbourhood: X, Xs, Xt, Xss, Xst, Xtt.
     /// `None` closer than 2^-[`MAX_RINGS`] to c.
     #[inline]
-    pub fn eval(&self, points: &[DVec3], around: &[u32], s: f64, t: f64) -> Option<[DVec3; 6]> {
+    pub fn eval(&self, around: &[DVec3], s: f64, t: f64) -> Option<[DVec3; 6]> {
         let cell = Cell::locate(s, t)?;
-        let (c, offset) = self.cell_coefficients(points, around, cell);
+        let (c, offset) = self.cell_coefficients(around, cell);
         let (u, v) = cell.local;
         let mut d = box_spline::eval_coefficients(&c, u, v);
         d[0] += offset;
@@ -104,16 +103,11 @@ impl SpecialPatch {
     /// the position (the limit point when the cell lies in a ring below the
     /// first, whose coefficients are taken relative to it). Everything an
     /// evaluation in the cell needs besides (u, v): callers that evaluate
-    /// many points in one cell compute this once.
-    pub fn cell_coefficients(
-        &self,
-        points: &[DVec3],
-        around: &[u32],
-        cell: Cell,
-    ) -> ([DVec3; 15], DVec3) {
-        // The neighbourhood gathered once (each of the 15 rows reads all of
-        // it), and scratch for pushing it down, on the stack for the usual
-        // valences. The sums run in the same order as over `points`.
+    /// many points in one cell compute this once. `around` holds the
+    /// positions of the neighbourhood.
+    pub fn cell_coefficients(&self, around: &[DVec3], cell: Cell) -> ([DVec3; 15], DVec3) {
+        // The neighbourhood, and scratch for pushing it down, on the stack
+        // for the usual valences.
         const INLINE: usize = 24;
         let n = self.size;
         let (mut inline, mut inline_next) = ([DVec3::ZERO; INLINE], [DVec3::ZERO; INLINE]);
@@ -125,9 +119,7 @@ impl SpecialPatch {
             heap_next.resize(n, DVec3::ZERO);
             (&mut heap, &mut heap_next)
         };
-        for (out, &i) in y.iter_mut().zip(around) {
-            *out = points[i as usize];
-        }
+        y.copy_from_slice(around);
         if cell.rings == 0 {
             // In the first ring the band rows apply to the points themselves.
             return (apply_columns(&self.band[cell.k - 1], y), DVec3::ZERO);

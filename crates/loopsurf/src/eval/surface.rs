@@ -34,11 +34,14 @@ enum Patch<'a> {
 }
 
 /// A triangle whose corner `corner` is special: its shared configuration
-/// and its neighbourhood in the once-refined net.
+/// and its neighbourhood in the once-refined net, by index and by position
+/// (kept side by side: gathering them from the whole net at every point
+/// was a cache miss each).
 struct SpecialCorner {
     corner: u8,
     patch: Arc<SpecialPatch>,
     points: Box<[u32]>,
+    positions: Box<[DVec3]>,
 }
 
 /// Control triangles whose patches are made together. Memory is laid out
@@ -197,7 +200,10 @@ impl Evaluator {
                 c.regular.len() * size_of::<[DVec3; 15]>()
                     + c.special
                         .iter()
-                        .map(|s| size_of::<SpecialCorner>() + s.points.len() * size_of::<u32>())
+                        .map(|s| {
+                            size_of::<SpecialCorner>()
+                                + s.points.len() * (size_of::<u32>() + size_of::<DVec3>())
+                        })
                         .sum::<usize>()
             })
             .sum();
@@ -241,7 +247,7 @@ impl Evaluator {
                 let to_corner = rotation(s.corner as usize).after(&to_child);
                 let (a, b) = to_corner.apply(v, w);
                 let cell = Cell::locate(a, b)?;
-                let (c, offset) = s.patch.cell_coefficients(&self.points, &s.points, cell);
+                let (c, offset) = s.patch.cell_coefficients(&s.positions, cell);
                 let bezier = box_spline::bernstein(&c).map(|x| x + offset);
                 Some((bezier, cell_map(cell).after(&to_corner)))
             }
@@ -309,6 +315,7 @@ impl Evaluator {
                     corner,
                     patch,
                     points: around,
+                    positions,
                 } = special;
                 let points = &self.points;
                 let map = rotation(*corner as usize).after(&to_child);
@@ -321,7 +328,7 @@ impl Evaluator {
                 if s + u <= 0.0 {
                     return Err(at_vertex());
                 }
-                match patch.eval(points, around, s, u) {
+                match patch.eval(positions, s, u) {
                     Some(d) => Ok(map.pull_back(d)),
                     None => Err(at_vertex()),
                 }
@@ -394,6 +401,7 @@ impl Maker {
             corner: corner as u8,
             patch,
             points: Box::from(&scratch.around[..]),
+            positions: scratch.around.iter().map(|&i| points[i as usize]).collect(),
         })
     }
 }
@@ -444,6 +452,7 @@ impl<'a> ChartEvaluator<'a> {
             corner,
             patch,
             points: around,
+            positions,
         } = special;
         let points = &self.evaluator.points;
         let map = rotation(*corner as usize).after(&to_child);
@@ -463,7 +472,7 @@ impl<'a> ChartEvaluator<'a> {
         let slot = match self.cells.iter().position(|c| c.key == key) {
             Some(slot) => slot,
             None => {
-                let (c, offset) = patch.cell_coefficients(points, around, cell);
+                let (c, offset) = patch.cell_coefficients(positions, cell);
                 self.cells.push(CachedCell {
                     key,
                     coefficients: c,
