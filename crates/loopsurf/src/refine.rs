@@ -88,11 +88,10 @@ impl Refinement {
 /// triangle count by four, and 2^12 keeps dyadic parameters in 16 bits.
 pub const MAX_LEVELS: u32 = 12;
 
-/// Refines the net uniformly `levels` times.
-///
-/// Fails when `levels` exceeds [`MAX_LEVELS`] or the result would not fit
-/// 32-bit indices.
-pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
+/// The number of vertices after refining `net` `levels` times; fails when
+/// `levels` exceeds [`MAX_LEVELS`] or the result would not fit 32-bit
+/// indices.
+fn refined_vertices(net: &ControlNet, levels: u32) -> Result<u128> {
     if levels > MAX_LEVELS {
         return Err(Error::InvalidArgument(format!(
             "refinement levels {levels}: at most {MAX_LEVELS} are supported"
@@ -115,6 +114,22 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
             net.triangles().len()
         )));
     }
+    Ok(vertices)
+}
+
+/// One refinement of the net, without the dyadic origins of its vertices
+/// (the evaluator's, which needs only the refined net).
+pub(crate) fn refine_once(net: &ControlNet) -> Result<ControlNet> {
+    refined_vertices(net, 1)?;
+    Ok(subdivide(net))
+}
+
+/// Refines the net uniformly `levels` times.
+///
+/// Fails when `levels` exceeds [`MAX_LEVELS`] or the result would not fit
+/// 32-bit indices.
+pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
+    let vertices = refined_vertices(net, levels)?;
     let topo = net.topology();
     let full = 1u16 << levels;
     let mut origins: Vec<Dyadic> = Vec::with_capacity(vertices as usize);

@@ -15,8 +15,8 @@ pub const NONE: u32 = u32::MAX;
 /// loop runs on the calling thread without touching the pool: the small
 /// local nets of special configurations, built during an evaluation, then
 /// neither wake workers nor let the evaluating thread steal other work
-/// while it builds.
-pub(crate) const MIN_PER_TASK: usize = 1024;
+/// while it builds, and small nets refine without waking the pool.
+pub(crate) const MIN_PER_TASK: usize = 4096;
 
 /// Edges and adjacency of a manifold, consistently oriented triangulation.
 #[derive(Debug)]

@@ -111,7 +111,7 @@ struct Maker {
 
 impl Evaluator {
     pub fn new(net: &ControlNet) -> crate::Result<Evaluator> {
-        let fine = net.refine_uniform(1)?.into_net();
+        let fine = crate::refine::refine_once(net)?;
         // Making patches reads the rings: ordered here, in the build.
         fine.topology().order_rings();
         let kinds = fine.vertex_kinds();
