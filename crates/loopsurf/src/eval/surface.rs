@@ -22,7 +22,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, OnceLock, RwLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// How one triangle of the once-refined net is evaluated.
 #[derive(Clone, Copy)]
@@ -97,7 +97,7 @@ pub struct Evaluator {
     blocks: Box<[OnceLock<Block>]>,
     /// What making patches reads, released once every patch is made: the
     /// refined net's connectivity is a fifth of a fully made surface.
-    maker: RwLock<Option<Maker>>,
+    maker: Mutex<Option<Arc<Maker>>>,
     unmade: AtomicUsize,
     configurations: Configurations,
 }
@@ -121,11 +121,11 @@ impl Evaluator {
         Ok(Evaluator {
             points,
             blocks: (0..n.div_ceil(BLOCK)).map(|_| OnceLock::new()).collect(),
-            maker: RwLock::new(Some(Maker {
+            maker: Mutex::new(Some(Arc::new(Maker {
                 topo,
                 features,
                 kinds,
-            })),
+            }))),
             unmade: AtomicUsize::new(n.div_ceil(BLOCK)),
             configurations,
         })
@@ -139,24 +139,24 @@ impl Evaluator {
         }
     }
 
-    /// Makes the patches of block `b`. Never waits for another thread:
-    /// two racing to make one block both make it and the first is kept,
-    /// and a thread that steals work while making a configuration and
-    /// meets this block again makes it once more instead of deadlocking.
+    /// Makes the patches of block `b`. Never waits for another thread's
+    /// making (no lock is held while making): two racing to make one block
+    /// both make it and the first is kept, and a thread that steals work
+    /// while making a configuration and meets this block again makes it
+    /// once more instead of deadlocking.
     #[cold]
     #[inline(never)]
     fn make(&self, b: usize) -> &Block {
         let cell = &self.blocks[b];
-        let last = {
-            let maker = self.maker.read().unwrap_or_else(|e| e.into_inner());
-            // Released only once every block was set.
-            maker.as_ref().is_some_and(|maker| {
-                let made = maker.block(b, &self.points, &self.configurations);
-                cell.set(made).is_ok() && self.unmade.fetch_sub(1, Ordering::AcqRel) == 1
-            })
-        };
-        if last {
-            *self.maker.write().unwrap_or_else(|e| e.into_inner()) = None;
+        let lock = || self.maker.lock().unwrap_or_else(|e| e.into_inner());
+        // Released only once every block was set: if it is gone, so is the
+        // need.
+        let maker = lock().clone();
+        if let Some(maker) = maker {
+            let made = maker.block(b, &self.points, &self.configurations);
+            if cell.set(made).is_ok() && self.unmade.fetch_sub(1, Ordering::AcqRel) == 1 {
+                *lock() = None;
+            }
         }
         cell.get()
             .expect("made above, or by another thread before the maker was released")
@@ -207,8 +207,8 @@ impl Evaluator {
                         .sum::<usize>()
             })
             .sum();
-        let maker = self.maker.read().unwrap_or_else(|e| e.into_inner());
-        let maker = maker.as_ref().map_or(0, |m| {
+        let maker = self.maker.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        let maker = maker.map_or(0, |m| {
             m.topo.memory_bytes()
                 + m.features.memory_bytes()
                 + m.kinds.len() * size_of::<VertexKind>()
