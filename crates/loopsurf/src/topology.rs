@@ -368,9 +368,65 @@ impl Topology {
             .collect()
     }
 
-    /// Orders every vertex's ring now rather than on first use.
-    pub(crate) fn order_rings(&self) {
-        self.rings();
+    /// Orders the rings of this topology, [`Topology::refined`] from
+    /// `coarse`, from the coarse fans: each vertex's triangles are known
+    /// without gathering them from the whole triangle list. The walk is
+    /// [`walk_fan`]'s, so the rings are those ordering on first use would
+    /// give.
+    pub(crate) fn order_rings_from(&self, coarse: &Topology) {
+        if self.rings.get().is_some() {
+            return;
+        }
+        let nv = coarse.nverts as u32;
+        let mut fan_start = Vec::with_capacity(self.nverts + 1);
+        let mut ring_start = Vec::with_capacity(self.nverts + 1);
+        let mut fan = Vec::with_capacity(self.tris.len() * 3);
+        let mut ring = Vec::with_capacity(self.tris.len() * 3 + self.nverts / 8);
+        let (mut around, mut prevs) = (Vec::new(), Vec::new());
+        fan_start.push(0);
+        ring_start.push(0);
+        let mut walk = |v: u32, around: &mut Vec<(u32, u32, u32)>| {
+            let ordered = walk_fan(v, around, &mut prevs, &mut fan, &mut ring).is_ok();
+            fan_start.push(fan.len() as u32);
+            ring_start.push(ring.len() as u32);
+            ordered
+        };
+        // An old vertex lies in the child at its corner of each of its
+        // triangles, between the midpoints of its two edges there.
+        for v in 0..nv {
+            around.clear();
+            for &t in coarse.fan(v as usize) {
+                let i = corner_of(coarse.tris[t as usize], v) as usize;
+                let m = |k: usize| nv + coarse.tri_edges[t as usize][k];
+                around.push((m(i), m((i + 2) % 3), 4 * t + i as u32));
+            }
+            if !walk(v, &mut around) {
+                return;
+            }
+        }
+        // The midpoint of edge e, local edge i of triangle t, lies in the
+        // children at both ends of e and in the centre child.
+        for (e, tris) in coarse.edge_tris.iter().enumerate() {
+            around.clear();
+            for &t in tris.iter().filter(|&&t| t != NONE) {
+                let (c, te) = (coarse.tris[t as usize], coarse.tri_edges[t as usize]);
+                let i = te.iter().position(|&x| x as usize == e).unwrap_or(0);
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                let m = |k: usize| nv + te[k];
+                around.push((m(k), c[i], 4 * t + i as u32));
+                around.push((c[j], m(j), 4 * t + j as u32));
+                around.push((m(j), m(k), 4 * t + 3));
+            }
+            if !walk(nv + e as u32, &mut around) {
+                return;
+            }
+        }
+        let _ = self.rings.set(Rings {
+            fan_start,
+            fan,
+            ring_start,
+            ring,
+        });
     }
 
     fn rings(&self) -> &Rings {
@@ -699,6 +755,41 @@ mod tests {
             assert_eq!((fan, ring), (sorted_fan, sorted_ring), "vertex {v}");
         }
         assert!(small_walks > 0);
+    }
+
+    #[test]
+    fn refined_rings_from_the_coarse_fans_are_the_walked_ones() {
+        let tetra = Topology::new(4, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).unwrap();
+        let grid: Vec<[u32; 3]> = (0..4u32)
+            .flat_map(|i| (0..4u32).map(move |j| (i, j)))
+            .flat_map(|(i, j)| {
+                let at = |a: u32, b: u32| 5 * a + b;
+                [
+                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+                ]
+            })
+            .collect();
+        let bipyramid: Vec<[u32; 3]> = (0..20u32)
+            .flat_map(|i| [[i, (i + 1) % 20, 20], [(i + 1) % 20, i, 21]])
+            .collect();
+        let coarse = [
+            tetra.refined(),
+            Topology::new(25, grid).unwrap(),
+            Topology::new(22, bipyramid).unwrap(),
+        ];
+        for (case, coarse) in coarse.iter().enumerate() {
+            coarse.rings();
+            let fine = coarse.refined();
+            fine.order_rings_from(coarse);
+            let walked = Topology::new(fine.num_vertices(), fine.triangles().to_vec()).unwrap();
+            let (a, b) = (fine.rings(), walked.rings());
+            assert_eq!(
+                (&a.fan_start, &a.fan, &a.ring_start, &a.ring),
+                (&b.fan_start, &b.fan, &b.ring_start, &b.ring),
+                "case {case}"
+            );
+        }
     }
 
     #[test]

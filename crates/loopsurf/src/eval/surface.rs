@@ -113,7 +113,7 @@ impl Evaluator {
     pub fn new(net: &ControlNet) -> crate::Result<Evaluator> {
         let fine = crate::refine::refine_once(net)?;
         // Making patches reads the rings: ordered here, in the build.
-        fine.topology().order_rings();
+        fine.topology().order_rings_from(net.topology());
         let kinds = fine.vertex_kinds();
         let (points, topo, features) = fine.into_parts();
         let configurations = Configurations::new(points.len());
