@@ -727,6 +727,27 @@ mod tests {
         vec![[0, 1, 2], [0, 2, 3]]
     }
 
+    /// A 4 × 4 grid of squares, each cut in two: 25 vertices, open.
+    fn grid() -> Vec<[u32; 3]> {
+        (0..4u32)
+            .flat_map(|i| (0..4u32).map(move |j| (i, j)))
+            .flat_map(|(i, j)| {
+                let at = |a: u32, b: u32| 5 * a + b;
+                [
+                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+                ]
+            })
+            .collect()
+    }
+
+    /// Two apices of valence n over an n-gon, numbered last.
+    fn bipyramid(n: u32) -> Vec<[u32; 3]> {
+        (0..n)
+            .flat_map(|i| [[i, (i + 1) % n, n], [(i + 1) % n, i, n + 1]])
+            .collect()
+    }
+
     /// Both walks, on every vertex of `tris`, give the same fan and ring.
     fn assert_walks_agree(tris: &[[u32; 3]]) {
         let nv = 1 + tris.iter().flatten().max().copied().unwrap_or(0) as usize;
@@ -760,23 +781,10 @@ mod tests {
     #[test]
     fn refined_rings_from_the_coarse_fans_are_the_walked_ones() {
         let tetra = Topology::new(4, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).unwrap();
-        let grid: Vec<[u32; 3]> = (0..4u32)
-            .flat_map(|i| (0..4u32).map(move |j| (i, j)))
-            .flat_map(|(i, j)| {
-                let at = |a: u32, b: u32| 5 * a + b;
-                [
-                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-                ]
-            })
-            .collect();
-        let bipyramid: Vec<[u32; 3]> = (0..20u32)
-            .flat_map(|i| [[i, (i + 1) % 20, 20], [(i + 1) % 20, i, 21]])
-            .collect();
         let coarse = [
             tetra.refined(),
-            Topology::new(25, grid).unwrap(),
-            Topology::new(22, bipyramid).unwrap(),
+            Topology::new(25, grid()).unwrap(),
+            Topology::new(22, bipyramid(20)).unwrap(),
         ];
         for (case, coarse) in coarse.iter().enumerate() {
             coarse.rings();
@@ -798,22 +806,9 @@ mod tests {
         let tetra = Topology::new(4, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).unwrap();
         assert_walks_agree(tetra.refined().refined().triangles());
         // Open: a 4 × 4 grid of squares, each cut in two.
-        let grid: Vec<[u32; 3]> = (0..4u32)
-            .flat_map(|i| (0..4u32).map(move |j| (i, j)))
-            .flat_map(|(i, j)| {
-                let at = |a: u32, b: u32| 5 * a + b;
-                [
-                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-                ]
-            })
-            .collect();
-        assert_walks_agree(&grid);
+        assert_walks_agree(&grid());
         // A bipyramid: two apices of valence 12, numbered last.
-        let bipyramid: Vec<[u32; 3]> = (0..12u32)
-            .flat_map(|i| [[i, (i + 1) % 12, 12], [(i + 1) % 12, i, 13]])
-            .collect();
-        assert_walks_agree(&bipyramid);
+        assert_walks_agree(&bipyramid(12));
     }
 
     #[test]

@@ -302,3 +302,16 @@ fn write_point(w: &mut impl Write, p: DVec3) -> std::io::Result<()> {
     w.write_all(b" ")?;
     write_f64(w, p.z)
 }
+
+/// Overwrites `count` bytes of `data` at places and with values drawn from
+/// `state` (xorshift): the damage the readers' robustness tests feed them.
+#[cfg(test)]
+pub(crate) fn damage(data: &mut [u8], state: &mut u64, count: usize) {
+    for _ in 0..count {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        let at = (*state % data.len() as u64) as usize;
+        data[at] = (*state >> 32) as u8;
+    }
+}

@@ -588,13 +588,7 @@ fn damaged_files_do_not_panic() {
         let mut state = 0x9e3779b97f4a7c15u64;
         for _ in 0..300 {
             let mut data = good.clone();
-            for _ in 0..4 {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                let at = (state % data.len() as u64) as usize;
-                data[at] = (state >> 32) as u8;
-            }
+            crate::io::damage(&mut data, &mut state, 4);
             if let Ok(m) = parse_msh(&data, &path) {
                 let _ = m.to_lagrange();
             }

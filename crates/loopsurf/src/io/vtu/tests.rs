@@ -305,13 +305,7 @@ fn errors_name_the_line() {
     let mut state = 0x2545f4914f6cdd1du64;
     for _ in 0..500 {
         let mut data = PARAVIEW.as_bytes().to_vec();
-        for _ in 0..3 {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            let at = (state % data.len() as u64) as usize;
-            data[at] = (state >> 40) as u8;
-        }
+        crate::io::damage(&mut data, &mut state, 3);
         if let Ok(m) = parse_vtu(&data, Path::new("damaged.vtu")) {
             let _ = m.to_lagrange();
         }
