@@ -253,12 +253,12 @@ impl Surface {
     #[inline(always)]
     pub fn eval(&self, tri: usize, v: f64, w: f64) -> Result<Evaluation> {
         let (v, w) = self.check(tri, v, w)?;
-        let e = self.eval_approximating(tri, v, w);
-        Ok(if self.displacement.is_empty() {
-            e
-        } else {
-            self.displaced(tri, v, w, e)
-        })
+        // Returned where it is made: binding it first cost two copies
+        // (calls to memcpy) per evaluation.
+        if self.displacement.is_empty() {
+            return Ok(self.eval_approximating(tri, v, w));
+        }
+        Ok(self.displaced(tri, v, w, self.eval_approximating(tri, v, w)))
     }
 
     /// The position alone at (v, w) of triangle `tri`, bit-identical to

@@ -105,7 +105,13 @@ impl SpecialPatch {
     /// evaluation in the cell needs besides (u, v): callers that evaluate
     /// many points in one cell compute this once. `around` holds the
     /// positions of the neighbourhood.
+    #[inline]
     pub fn cell_coefficients(&self, around: &[DVec3], cell: Cell) -> ([DVec3; 15], DVec3) {
+        if cell.rings == 0 {
+            // In the first ring the band rows apply to the points themselves
+            // (three quarters of the corner triangle: no copy, no scratch).
+            return (apply_columns(&self.band[cell.k - 1], around), DVec3::ZERO);
+        }
         // The neighbourhood, and scratch for pushing it down, on the stack
         // for the usual valences.
         const INLINE: usize = 24;
@@ -119,16 +125,11 @@ impl SpecialPatch {
             heap_next.resize(n, DVec3::ZERO);
             (&mut heap, &mut heap_next)
         };
-        y.copy_from_slice(around);
-        if cell.rings == 0 {
-            // In the first ring the band rows apply to the points themselves.
-            return (apply_columns(&self.band[cell.k - 1], y), DVec3::ZERO);
-        }
-        // Below it, to their offsets from the limit point, pushed `rings`
-        // levels down with the cached powers.
-        let limit: DVec3 = self.limit.iter().zip(y.iter()).map(|(w, p)| *w * *p).sum();
-        for p in y.iter_mut() {
-            *p -= limit;
+        // Below the first ring, the band rows apply to the offsets from the
+        // limit point, pushed `rings` levels down with the cached powers.
+        let limit: DVec3 = self.limit.iter().zip(around).map(|(w, p)| *w * *p).sum();
+        for (y, p) in y.iter_mut().zip(around) {
+            *y = *p - limit;
         }
         self.push_down(&mut y, &mut next, cell.rings);
         (self.band_coefficients(cell.k, y), limit)
