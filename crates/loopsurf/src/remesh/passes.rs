@@ -634,11 +634,22 @@ impl<'a> Remeshing<'a> {
     /// the surface (curve) by projection and stays only if its triangles
     /// stay valid. Returns the number moved.
     pub fn relax(&mut self) -> usize {
+        self.relax_with(None)
+    }
+
+    /// [`Remeshing::relax`] keeping only the moves that leave the smallest
+    /// angle around the vertex no smaller.
+    pub fn relax_guarded(&mut self) -> usize {
+        // No cosine is below −1: the floor is each vertex's own worst.
+        self.relax_with(Some(-1.0))
+    }
+
+    fn relax_with(&mut self, floor: Option<f64>) -> usize {
         let targets: Vec<Option<Vertex>> = (0..self.vertices.len() as u32)
             .into_par_iter()
             .map(|v| self.relaxed(v))
             .collect();
-        self.apply_moves(targets, None)
+        self.apply_moves(targets, floor)
     }
 
     /// Applies moves (one per vertex, `None` for none) one by one against
