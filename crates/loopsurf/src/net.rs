@@ -168,9 +168,9 @@ impl ControlNet {
         }
     }
 
-    /// The positions, connectivity and hard features, taken apart.
-    pub(crate) fn into_parts(self) -> (Vec<DVec3>, std::sync::Arc<Topology>, Features) {
-        (self.points, self.topo, self.features)
+    /// The connectivity, shared.
+    pub(crate) fn shared_topology(&self) -> std::sync::Arc<Topology> {
+        self.topo.clone()
     }
 
     /// The same net (topology and hard features) with other vertex

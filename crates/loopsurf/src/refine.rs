@@ -117,11 +117,16 @@ fn refined_vertices(net: &ControlNet, levels: u32) -> Result<u128> {
     Ok(vertices)
 }
 
-/// One refinement of the net, without the dyadic origins of its vertices
-/// (the evaluator's, which needs only the refined net).
-pub(crate) fn refine_once(net: &ControlNet) -> Result<ControlNet> {
+/// The positions of one refinement of the net, numbered as
+/// [`crate::Topology::refined`] numbers its vertices (the evaluator's, which
+/// builds the refined connectivity only when it first makes a patch).
+pub(crate) fn refine_points_once(net: &ControlNet) -> Result<Vec<DVec3>> {
     refined_vertices(net, 1)?;
-    Ok(subdivide(net))
+    Ok(subdivide_points(
+        net.topology(),
+        net.features(),
+        net.points(),
+    ))
 }
 
 /// Refines the net uniformly `levels` times.

@@ -134,9 +134,11 @@ impl Curvature {
 }
 
 impl Surface {
-    /// The limit surface of `net` (which is copied): refines it once; each
-    /// triangle's evaluation data is made when a query first reaches it.
-    /// Fails only when the once-refined net would not fit 32-bit indices.
+    /// The limit surface of `net` (which is copied): refines its points
+    /// once; the refined connectivity is built when the first query needs
+    /// it, and each triangle's evaluation data when a query first reaches
+    /// it. Fails only when the once-refined net would not fit 32-bit
+    /// indices.
     pub fn new(net: &ControlNet) -> Result<Surface> {
         Self::with_mode(net, SurfaceMode::Approximating)
     }

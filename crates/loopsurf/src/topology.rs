@@ -84,6 +84,20 @@ impl Topology {
     /// first endpoint) and `2e+1`, and triangle t adds the interior edges
     /// `2E + 3t + i`.
     pub fn refined(&self) -> Topology {
+        self.refined_with(MIN_PER_TASK)
+    }
+
+    /// [`Topology::refined`] on the calling thread alone: no task goes to
+    /// the thread pool, so a caller may build it while other threads wait
+    /// on a lock it holds (a pool thread waiting for it can never be
+    /// holding a task it needs).
+    pub(crate) fn refined_here(&self) -> Topology {
+        self.refined_with(usize::MAX)
+    }
+
+    /// [`Topology::refined`], each loop split into tasks of at least
+    /// `min_len` items.
+    fn refined_with(&self, min_len: usize) -> Topology {
         // Every output slot is a pure function of its parent, so each array
         // is filled in place, in parallel, with no searching or scattering.
         let nv = self.nverts as u32;
@@ -98,7 +112,7 @@ impl Topology {
         let (halves, inner) = edges.split_at_mut(2 * ne);
         halves
             .par_chunks_mut(2)
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(min_len)
             .enumerate()
             .for_each(|(e, out)| {
                 let [a, b] = self.edges[e];
@@ -109,7 +123,7 @@ impl Topology {
         let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
         half_tris
             .par_chunks_mut(2)
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(min_len)
             .enumerate()
             .for_each(|(e, out)| {
                 // The half of edge e at vertex v lies in the children at v's
@@ -125,7 +139,7 @@ impl Topology {
             });
         inner_tris
             .par_chunks_mut(3)
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(min_len)
             .enumerate()
             .for_each(|(t, out)| {
                 let t = t as u32;
@@ -137,7 +151,7 @@ impl Topology {
             .par_chunks_mut(3)
             .zip(tris.par_chunks_mut(4))
             .zip(tri_edges.par_chunks_mut(4))
-            .with_min_len(MIN_PER_TASK)
+            .with_min_len(min_len)
             .enumerate()
             .for_each(|(t, ((inner_edges, child_tris), child_edges))| {
                 let c = self.tris[t];

@@ -4,9 +4,11 @@
 //! configuration.
 //!
 //! Patches are made on first use, a block of control triangles at a time,
-//! by whichever thread evaluates there first. Building
-//! a surface is then one refinement, like OpenSubdiv's factory, and a
-//! solver that reads only part of a large net never pays for the rest.
+//! by whichever thread evaluates there first, and the refined net's
+//! connectivity they read is built with the first of them. Building a
+//! surface is then one refinement of the points (OpenSubdiv's factory
+//! builds only connectivity), and a solver that reads only part of a large
+//! net never pays for the rest.
 //! What a patch holds does not depend on when or where it was made, so
 //! results are the same bits whatever the order of evaluation.
 
@@ -95,11 +97,23 @@ struct Scratch {
 pub struct Evaluator {
     points: Vec<DVec3>,
     blocks: Box<[OnceLock<Block>]>,
-    /// What making patches reads, released once every patch is made: the
-    /// refined net's connectivity is a fifth of a fully made surface.
-    maker: Mutex<Option<Arc<Maker>>>,
+    /// What making patches reads: built when the first patch is made,
+    /// released once every patch is made (the refined net's connectivity
+    /// is a fifth of a fully made surface).
+    maker: Mutex<MakerState>,
     unmade: AtomicUsize,
     configurations: Configurations,
+}
+
+/// The maker's life: to be built from the control net's connectivity and
+/// hard features, built, then released.
+enum MakerState {
+    Coarse {
+        topo: Arc<Topology>,
+        features: Features,
+    },
+    Made(Arc<Maker>),
+    Released,
 }
 
 /// The connectivity and hard features of the once-refined net.
@@ -111,24 +125,34 @@ struct Maker {
 
 impl Evaluator {
     pub fn new(net: &ControlNet) -> crate::Result<Evaluator> {
-        let fine = crate::refine::refine_once(net)?;
-        // Making patches reads the rings: ordered here, in the build.
-        fine.topology().order_rings_from(net.topology());
-        let kinds = fine.vertex_kinds();
-        let (points, topo, features) = fine.into_parts();
+        let points = crate::refine::refine_points_once(net)?;
         let configurations = Configurations::new(points.len());
         let n = net.triangles().len();
         Ok(Evaluator {
             points,
             blocks: (0..n.div_ceil(BLOCK)).map(|_| OnceLock::new()).collect(),
-            maker: Mutex::new(Some(Arc::new(Maker {
-                topo,
-                features,
-                kinds,
-            }))),
+            maker: Mutex::new(MakerState::Coarse {
+                topo: net.shared_topology(),
+                features: net.features().clone(),
+            }),
             unmade: AtomicUsize::new(n.div_ceil(BLOCK)),
             configurations,
         })
+    }
+
+    /// The maker, built by the first caller (the others wait for it:
+    /// it is built on the calling thread alone, never waiting on the pool
+    /// nor evaluating, so a waiting thread holds nothing it needs), or
+    /// `None` once released.
+    fn maker(&self) -> Option<Arc<Maker>> {
+        let mut state = self.maker.lock().unwrap_or_else(|e| e.into_inner());
+        if let MakerState::Coarse { topo, features } = &*state {
+            *state = MakerState::Made(Arc::new(Maker::refine(topo, features)));
+        }
+        match &*state {
+            MakerState::Made(maker) => Some(maker.clone()),
+            _ => None,
+        }
     }
 
     /// The patch of child `k` of control triangle `tri`.
@@ -148,14 +172,12 @@ impl Evaluator {
     #[inline(never)]
     fn make(&self, b: usize) -> &Block {
         let cell = &self.blocks[b];
-        let lock = || self.maker.lock().unwrap_or_else(|e| e.into_inner());
         // Released only once every block was set: if it is gone, so is the
         // need.
-        let maker = lock().clone();
-        if let Some(maker) = maker {
+        if let Some(maker) = self.maker() {
             let made = maker.block(b, &self.points, &self.configurations);
             if cell.set(made).is_ok() && self.unmade.fetch_sub(1, Ordering::AcqRel) == 1 {
-                *lock() = None;
+                *self.maker.lock().unwrap_or_else(|e| e.into_inner()) = MakerState::Released;
             }
         }
         cell.get()
@@ -187,9 +209,10 @@ impl Evaluator {
         }
     }
 
-    /// Bytes held: the once-refined net (its connectivity until every patch
-    /// is made), the patches made so far and each configuration built so
-    /// far once.
+    /// Bytes held: the once-refined net (its connectivity from the first
+    /// patch made until every patch is made; before, a copy of the control
+    /// net's hard features, its connectivity being the net's), the patches
+    /// made so far and each configuration built so far once.
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let made: usize = self
@@ -207,12 +230,15 @@ impl Evaluator {
                         .sum::<usize>()
             })
             .sum();
-        let maker = self.maker.lock().unwrap_or_else(|e| e.into_inner()).clone();
-        let maker = maker.map_or(0, |m| {
-            m.topo.memory_bytes()
-                + m.features.memory_bytes()
-                + m.kinds.len() * size_of::<VertexKind>()
-        });
+        let maker = match &*self.maker.lock().unwrap_or_else(|e| e.into_inner()) {
+            MakerState::Coarse { features, .. } => features.memory_bytes(),
+            MakerState::Made(m) => {
+                m.topo.memory_bytes()
+                    + m.features.memory_bytes()
+                    + m.kinds.len() * size_of::<VertexKind>()
+            }
+            MakerState::Released => 0,
+        };
         self.points.len() * size_of::<DVec3>()
             + maker
             + self.blocks.len() * size_of::<OnceLock<Block>>()
@@ -338,6 +364,20 @@ impl Evaluator {
 }
 
 impl Maker {
+    /// The connectivity, hard features and vertex kinds of the control
+    /// net `topo` refined once, built on the calling thread alone.
+    fn refine(topo: &Topology, features: &Features) -> Maker {
+        let fine = topo.refined_here();
+        fine.order_rings_from(topo);
+        let features = features.refined(topo);
+        let kinds = features.vertex_kinds(&fine);
+        Maker {
+            topo: Arc::new(fine),
+            features,
+            kinds,
+        }
+    }
+
     /// The patches of block `b`.
     fn block(&self, b: usize, points: &[DVec3], configurations: &Configurations) -> Block {
         // Taken out, not borrowed: a thread that steals work while making
