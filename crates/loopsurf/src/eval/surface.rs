@@ -164,7 +164,8 @@ impl Evaluator {
     }
 
     /// Makes the patches of block `b`. Never waits for another thread's
-    /// making (no lock is held while making): two racing to make one block
+    /// making (no lock is held while making; a thread waits only while
+    /// [`Evaluator::maker`] is first built): two racing to make one block
     /// both make it and the first is kept, and a thread that steals work
     /// while making a configuration and meets this block again makes it
     /// once more instead of deadlocking.
