@@ -118,7 +118,7 @@ enum MakerState {
 
 /// The connectivity and hard features of the once-refined net.
 struct Maker {
-    topo: Arc<Topology>,
+    topo: Topology,
     features: Features,
     kinds: Vec<VertexKind>,
 }
@@ -373,7 +373,7 @@ impl Maker {
         let features = features.refined(topo);
         let kinds = features.vertex_kinds(&fine);
         Maker {
-            topo: Arc::new(fine),
+            topo: fine,
             features,
             kinds,
         }
@@ -424,7 +424,7 @@ impl Maker {
         configurations: &Configurations,
         scratch: &mut Scratch,
     ) -> Result<[DVec3; 15], SpecialCorner> {
-        let (topo, features) = (&*self.topo, &self.features);
+        let (topo, features) = (&self.topo, &self.features);
         if let Some(s) = regular::stencil(topo, features, &self.kinds, t) {
             let control = s.map(|p| p.position(points));
             return Ok(box_spline::coefficients(&control));

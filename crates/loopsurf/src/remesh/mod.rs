@@ -84,8 +84,7 @@ const POLISH: usize = 2;
 /// and the smallest by up to 4° (fandisk adapted: 49.93° → 50.03°, the
 /// issue's goal met; Viking adapted: min 23.8° → 27.9°); each further
 /// round adds about 0.02°, and max–min flips after each 0.01° (they find
-/// a handful of edges). Guarding the polish rounds instead gives 49.85°,
-/// and one polish round with two guarded ones 49.98°.
+/// a handful of edges). Guarding the polish rounds instead gives 49.85°.
 const GUARDED: usize = 2;
 
 /// Rounds of re-sizing where the measured chord error exceeds the tolerance.
