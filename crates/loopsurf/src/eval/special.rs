@@ -86,19 +86,6 @@ pub fn patch_at(
 }
 
 impl SpecialPatch {
-    /// Evaluates at (s, t) of the triangle (c, p, q), s + t > 0, from the
-    /// positions of its neighbourhood: X, Xs, Xt, Xss, Xst, Xtt.
-    /// `None` closer than 2^-[`MAX_RINGS`] to c.
-    #[inline]
-    pub fn eval(&self, around: &[DVec3], s: f64, t: f64) -> Option<[DVec3; 6]> {
-        let cell = Cell::locate(s, t)?;
-        let (c, offset) = self.cell_coefficients(around, cell);
-        let (u, v) = cell.local;
-        let mut d = box_spline::eval_coefficients(&c, u, v);
-        d[0] += offset;
-        Some(cell.pull_back(d))
-    }
-
     /// The box-spline coefficients of one cell, and the offset to add to
     /// the position (the limit point when the cell lies in a ring below the
     /// first, whose coefficients are taken relative to it). Everything an

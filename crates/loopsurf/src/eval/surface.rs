@@ -38,12 +38,73 @@ enum Patch<'a> {
 /// A triangle whose corner `corner` is special: its shared configuration
 /// and its neighbourhood in the once-refined net, by index and by position
 /// (kept side by side: gathering them from the whole net at every point
-/// was a cache miss each).
+/// was a cache miss each), and the coefficients of its first ring.
 struct SpecialCorner {
     corner: u8,
     patch: Arc<SpecialPatch>,
     points: Box<[u32]>,
     positions: Box<[DVec3]>,
+    /// The box-spline coefficients of the three cells of the first ring,
+    /// three quarters of the triangle: there a point costs what a regular
+    /// one does, where applying the configuration's band to the
+    /// neighbourhood cost four times that.
+    first_ring: Box<[[DVec3; 15]; 3]>,
+}
+
+impl SpecialCorner {
+    /// The map from a control triangle's (v, w) in this child (which
+    /// `to_child` maps to the child's parameters) to the corner's (s, t),
+    /// and the cell of (v, w): `None` exactly at the special vertex, or
+    /// closer than 2^-[`super::special::MAX_RINGS`] to it.
+    #[inline]
+    fn locate(&self, to_child: &Affine, v: f64, w: f64) -> (Affine, Option<Cell>) {
+        let map = rotation(self.corner as usize).after(to_child);
+        let (s, t) = map.apply(v, w);
+        let cell = if s + t > 0.0 {
+            Cell::locate(s, t)
+        } else {
+            None
+        };
+        (map, cell)
+    }
+
+    /// `f` of the coefficients of `cell` and the offset to add to its
+    /// position: stored for the first ring, pushed down from the
+    /// neighbourhood below it.
+    #[inline]
+    fn with_cell<R>(&self, cell: Cell, f: impl FnOnce(&[DVec3; 15], DVec3) -> R) -> R {
+        if cell.rings == 0 {
+            return f(&self.first_ring[cell.k - 1], DVec3::ZERO);
+        }
+        let (c, offset) = self.patch.cell_coefficients(&self.positions, cell);
+        f(&c, offset)
+    }
+
+    /// The answer exactly at the special vertex.
+    #[cold]
+    fn at_vertex(&self, points: &[DVec3]) -> AtVertex {
+        let around = &self.points;
+        AtVertex {
+            vertex: around[0],
+            limit: self.patch.limit_point(points, around),
+            normal: self.patch.normal_at_vertex(points, around),
+        }
+    }
+}
+
+/// X and its derivatives with respect to (v, w) from the coefficients and
+/// offset of `cell`, which `map` and the cell's own map place.
+#[inline]
+fn eval_in_cell(c: &[DVec3; 15], offset: DVec3, cell: Cell, map: &Affine) -> [DVec3; 6] {
+    let mut d = box_spline::eval_coefficients(c, cell.local.0, cell.local.1);
+    d[0] += offset;
+    map.pull_back(cell.pull_back(d))
+}
+
+/// X alone: the same bits as [`eval_in_cell`]'s.
+#[inline]
+fn point_in_cell(c: &[DVec3; 15], offset: DVec3, cell: Cell) -> DVec3 {
+    box_spline::eval_point(c, cell.local.0, cell.local.1) + offset
 }
 
 /// Control triangles whose patches are made together. Memory is laid out
@@ -226,6 +287,7 @@ impl Evaluator {
                         .iter()
                         .map(|s| {
                             size_of::<SpecialCorner>()
+                                + size_of::<[[DVec3; 15]; 3]>()
                                 + s.points.len() * (size_of::<u32>() + size_of::<DVec3>())
                         })
                         .sum::<usize>()
@@ -271,11 +333,11 @@ impl Evaluator {
         match self.patch(tri, k) {
             Patch::Regular(coefficients) => Some((box_spline::bernstein(coefficients), to_child)),
             Patch::Special(s) => {
-                let to_corner = rotation(s.corner as usize).after(&to_child);
-                let (a, b) = to_corner.apply(v, w);
-                let cell = Cell::locate(a, b)?;
-                let (c, offset) = s.patch.cell_coefficients(&s.positions, cell);
-                let bezier = box_spline::bernstein(&c).map(|x| x + offset);
+                let (to_corner, cell) = s.locate(&to_child, v, w);
+                let cell = cell?;
+                let bezier = s.with_cell(cell, |c, offset| {
+                    box_spline::bernstein(c).map(|x| x + offset)
+                });
                 Some((bezier, cell_map(cell).after(&to_corner)))
             }
         }
@@ -318,9 +380,9 @@ impl Evaluator {
                 let (s, u) = to_child.apply(v, w);
                 box_spline::eval_point(coefficients, s, u)
             }
-            Patch::Special(_) => match self.eval(tri, v, w) {
-                Ok(d) => d[0],
-                Err(at) => at.limit,
+            Patch::Special(special) => match special.locate(&to_child, v, w) {
+                (_, Some(cell)) => special.with_cell(cell, |c, o| point_in_cell(c, o, cell)),
+                (_, None) => special.at_vertex(&self.points).limit,
             },
         }
     }
@@ -337,29 +399,19 @@ impl Evaluator {
                 let d = box_spline::eval_coefficients(coefficients, s, u);
                 Ok(to_child.pull_back(d))
             }
-            Patch::Special(special) => {
-                let SpecialCorner {
-                    corner,
-                    patch,
-                    points: around,
-                    positions,
-                } = special;
-                let points = &self.points;
-                let map = rotation(*corner as usize).after(&to_child);
-                let (s, u) = map.apply(v, w);
-                let at_vertex = || AtVertex {
-                    vertex: around[0],
-                    limit: patch.limit_point(points, around),
-                    normal: patch.normal_at_vertex(points, around),
-                };
-                if s + u <= 0.0 {
-                    return Err(at_vertex());
+            // Spelled out rather than through `with_cell`: its closure,
+            // called twice there, was not inlined and cost 5% in copies.
+            Patch::Special(special) => match special.locate(&to_child, v, w) {
+                (map, Some(cell)) if cell.rings == 0 => {
+                    let c = &special.first_ring[cell.k - 1];
+                    Ok(eval_in_cell(c, DVec3::ZERO, cell, &map))
                 }
-                match patch.eval(positions, s, u) {
-                    Some(d) => Ok(map.pull_back(d)),
-                    None => Err(at_vertex()),
+                (map, Some(cell)) => {
+                    let (c, offset) = special.patch.cell_coefficients(&special.positions, cell);
+                    Ok(eval_in_cell(&c, offset, cell, &map))
                 }
-            }
+                (_, None) => Err(special.at_vertex(&self.points)),
+            },
         }
     }
 }
@@ -438,17 +490,19 @@ impl Maker {
         neighbourhood_into(topo, c, p, q, &mut scratch.around);
         let patch =
             configurations.of_corner(topo, features, &self.kinds, [c, p, q], &mut scratch.corner);
+        let positions: Box<[DVec3]> = scratch.around.iter().map(|&i| points[i as usize]).collect();
         Err(SpecialCorner {
             corner: corner as u8,
+            first_ring: Box::new([1, 2, 3].map(|k| patch.band_coefficients(k, &positions))),
             patch,
             points: Box::from(&scratch.around[..]),
-            positions: scratch.around.iter().map(|&i| points[i as usize]).collect(),
+            positions,
         })
     }
 }
 
 /// Evaluation inside one control triangle that remembers the coefficients
-/// of every special cell it visits. Near a special vertex most of an
+/// of every special cell it visits below the first ring. There most of an
 /// evaluation's cost is pushing the neighbourhood down to the point's ring;
 /// a mesher evaluating thousands of points in one triangle pays it once per
 /// ring instead of once per point. Results are bit-identical to
@@ -476,68 +530,59 @@ impl<'a> ChartEvaluator<'a> {
         }
     }
 
-    /// The special corner's cell of (v, w) in child `child`, its
-    /// coefficients and the map from (v, w) to the corner's (s, t); `Err`
-    /// exactly at the vertex. `None` when the child is regular.
+    /// The cell of (v, w) in special child `child` (`to_child` maps to
+    /// its parameters), the map from (v, w) to the corner's (s, t), and
+    /// the cell's coefficients and offset: the first ring's as stored,
+    /// a deeper cell's pushed down on its first visit and kept. `Err`
+    /// exactly at the vertex, `None` in a regular child.
+    #[allow(clippy::type_complexity)]
     fn special(
         &mut self,
         child: usize,
         to_child: Affine,
         v: f64,
         w: f64,
-    ) -> Option<Result<(Cell, Affine, usize), AtVertex>> {
+    ) -> Option<Result<(Cell, Affine, &[DVec3; 15], DVec3), AtVertex>> {
         let Patch::Special(special) = self.evaluator.patch(self.tri, child) else {
             return None;
         };
-        let SpecialCorner {
-            corner,
-            patch,
-            points: around,
-            positions,
-        } = special;
-        let points = &self.evaluator.points;
-        let map = rotation(*corner as usize).after(&to_child);
-        let (s, u) = map.apply(v, w);
-        let at_vertex = || AtVertex {
-            vertex: around[0],
-            limit: patch.limit_point(points, around),
-            normal: patch.normal_at_vertex(points, around),
+        let (map, cell) = special.locate(&to_child, v, w);
+        let Some(cell) = cell else {
+            return Some(Err(special.at_vertex(&self.evaluator.points)));
         };
-        if s + u <= 0.0 {
-            return Some(Err(at_vertex()));
+        if cell.rings == 0 {
+            return Some(Ok((
+                cell,
+                map,
+                &special.first_ring[cell.k - 1],
+                DVec3::ZERO,
+            )));
         }
-        let Some(cell) = Cell::locate(s, u) else {
-            return Some(Err(at_vertex()));
-        };
         let key = (child, cell.rings, cell.k);
         let slot = match self.cells.iter().position(|c| c.key == key) {
             Some(slot) => slot,
             None => {
-                let (c, offset) = patch.cell_coefficients(positions, cell);
+                let (coefficients, offset) =
+                    special.patch.cell_coefficients(&special.positions, cell);
                 self.cells.push(CachedCell {
                     key,
-                    coefficients: c,
+                    coefficients,
                     offset,
                 });
                 self.cells.len() - 1
             }
         };
-        Some(Ok((cell, map, slot)))
+        let cached = &self.cells[slot];
+        Some(Ok((cell, map, &cached.coefficients, cached.offset)))
     }
 
     /// X at (v, w); like [`Evaluator::point`].
     pub fn point(&mut self, v: f64, w: f64) -> DVec3 {
         let (k, to_child) = child_containing(v, w);
+        let tri = self.tri;
         match self.special(k, to_child, v, w) {
-            None => self.evaluator.point(self.tri, v, w),
-            Some(Ok((cell, _, slot))) => {
-                let CachedCell {
-                    coefficients: c,
-                    offset,
-                    ..
-                } = &self.cells[slot];
-                box_spline::eval_point(c, cell.local.0, cell.local.1) + *offset
-            }
+            None => self.evaluator.point(tri, v, w),
+            Some(Ok((cell, _, c, offset))) => point_in_cell(c, offset, cell),
             Some(Err(at)) => at.limit,
         }
     }
@@ -545,18 +590,11 @@ impl<'a> ChartEvaluator<'a> {
     /// X and its derivatives at (v, w); like [`Evaluator::eval`].
     pub fn eval(&mut self, v: f64, w: f64) -> Result<[DVec3; 6], AtVertex> {
         let (k, to_child) = child_containing(v, w);
-        let (cell, map, slot) = match self.special(k, to_child, v, w) {
-            None => return self.evaluator.eval(self.tri, v, w),
-            Some(found) => found?,
-        };
-        let CachedCell {
-            coefficients: c,
-            offset,
-            ..
-        } = &self.cells[slot];
-        let mut d = box_spline::eval_coefficients(c, cell.local.0, cell.local.1);
-        d[0] += *offset;
-        Ok(map.pull_back(cell.pull_back(d)))
+        let tri = self.tri;
+        match self.special(k, to_child, v, w) {
+            None => self.evaluator.eval(tri, v, w),
+            Some(found) => found.map(|(cell, map, c, offset)| eval_in_cell(c, offset, cell, &map)),
+        }
     }
 }
 
