@@ -226,7 +226,21 @@ impl<'a> Remeshing<'a> {
                 let (Some(m), Some(h)) = (m, self.mesh.find(a, b)) else {
                     continue;
                 };
-                if self.split_valid(h, &m) {
+                // The projected midpoint may lie on the other sheet of a
+                // sharp fold inside one face (next to a crease that ends
+                // in it): then halfway in the parameters of a control
+                // triangle holding both ends.
+                let m = if self.split_valid(h, &m) {
+                    Some(m)
+                } else if self.mesh.edge_label[h as usize] != NONE {
+                    None
+                } else {
+                    let (va, vb) = (&self.vertices[a as usize], &self.vertices[b as usize]);
+                    self.placer
+                        .between_in(va, vb, self.face(h))
+                        .filter(|m| self.split_valid(h, m))
+                };
+                if let Some(m) = m {
                     let id = self.mesh.add_vertex();
                     self.vertices.push(m);
                     self.size.push(self.target(a, b));
