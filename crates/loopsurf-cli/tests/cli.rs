@@ -407,6 +407,7 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         "by snap",
         "angles: min",
         "below 20°",
+        "below 10°",
         "edge lengths:",
     ] {
         assert!(
@@ -414,6 +415,22 @@ fn mesh_the_viking_writes_its_summary_and_files() {
             "summary lacks '{needle}':\n{summary}"
         );
     }
+    // The "done when" mesh: its quality as the summary states it.
+    let number_after = |label: &str| -> f64 {
+        let rest = &summary[summary.find(label).expect(label) + label.len()..];
+        rest[..rest.find('°').expect("degrees")]
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    let (min, mean_min) = (
+        number_after("angles: min"),
+        number_after("per-triangle minima"),
+    );
+    assert!(
+        min >= 20.0 && mean_min >= 50.0,
+        "{min}° / {mean_min}°:\n{summary}"
+    );
     let xml = std::fs::read_to_string(&vtu).unwrap();
     for name in [
         "tri",
