@@ -36,7 +36,8 @@ pub struct Args {
     /// Without it, the quality remesher.
     #[arg(long)]
     charts: bool,
-    /// Largest ratio of neighbouring sizes per edge with --adapt (remesher).
+    /// Largest ratio of neighbouring sizes per edge where sizes vary
+    /// (--adapt, or a --tolerance that shrinks --size; remesher).
     #[arg(long, value_name = "G", default_value_t = loopsurf::remesh::DEFAULT_GRADATION)]
     gradation: f64,
     /// Let the density follow curvature, bounded by the tolerance (1e-3 if

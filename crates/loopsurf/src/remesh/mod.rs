@@ -155,7 +155,10 @@ impl<'a> Remesher<'a> {
         let tolerance =
             crate::mesh::checked_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
         let sizing = match (self.size, self.adapt, tolerance) {
-            (Some(h), false, _) => Sizing::Uniform(h),
+            (Some(h), false, _) => Sizing::Uniform {
+                size: h,
+                gradation: self.gradation,
+            },
             (size, _, Some(tol)) => {
                 let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
                 Sizing::curvature(self.surface, tol, cap, cap * 1e-3, self.gradation)
@@ -167,7 +170,7 @@ impl<'a> Remesher<'a> {
             }
             (Some(_), true, None) => unreachable!("adaptation has a tolerance"),
         };
-        if let Sizing::Uniform(h) = sizing {
+        if let Sizing::Uniform { size: h, .. } = sizing {
             // The same budget as the chart mesher's, from the area.
             let estimate = 4.0 * diagonal.powi(2) / (h * h);
             if estimate > 1e9 {
