@@ -285,8 +285,8 @@ int ls_mesh(const ls_surface *surface,
 // chord error (0: none): it is measured after meshing and the sizes shrink
 // where it is exceeded, a few rounds at most. `adapt_curvature` 1 sizes
 // the edges from the exact principal curvatures under the tolerance (1e-3
-// when 0), capped by `size` when given; 0 keeps `size` everywhere.
-// Without a size, a tolerance alone adapts too. `gradation` > 1 bounds the
+// when 0), capped by `size` when given; 0 keeps `size` everywhere unless
+// a tolerance is given: any tolerance adapts to curvature the same way. `gradation` > 1 bounds the
 // ratio of neighbouring sizes per edge when adapting (0: the default, 1.3).
 //
 // Writes `nverts`, `xyz` (3 × nverts), `ntris`, `tris` (3 × ntris, 0-based,

@@ -16,7 +16,9 @@ pub struct Args {
     #[command(flatten)]
     surface: SurfaceOptions,
     /// Chord tolerance: every output triangle within EPS × the bounding-box
-    /// diagonal of the surface (at centroids and edge midpoints).
+    /// diagonal of the surface (at centroids and edge midpoints). The
+    /// remesher then sizes by curvature (as --adapt curvature), capped by
+    /// --size if given.
     #[arg(long, value_name = "EPS", allow_hyphen_values = true)]
     tolerance: Option<f64>,
     /// Target edge length, in model units.
@@ -37,7 +39,7 @@ pub struct Args {
     #[arg(long)]
     charts: bool,
     /// Largest ratio of neighbouring sizes per edge where sizes vary
-    /// (--adapt, or a --tolerance that shrinks --size; remesher).
+    /// (--adapt or --tolerance; remesher).
     #[arg(long, value_name = "G", default_value_t = loopsurf::remesh::DEFAULT_GRADATION)]
     gradation: f64,
     /// Let the density follow curvature, bounded by the tolerance (1e-3 if

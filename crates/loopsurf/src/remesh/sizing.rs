@@ -31,9 +31,8 @@ const CHORD_FACTOR: f64 = 6.0 * 9.0 / 16.0;
 /// How the target edge length is set.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Sizing {
-    /// One length everywhere, graded by `gradation` where a tolerance
-    /// shrinks it.
-    Uniform { size: f64, gradation: f64 },
+    /// One length everywhere.
+    Uniform(f64),
     /// Per control triangle: √(3.375ε/κ) within [`floor`, cap]; graded by
     /// `gradation` over the mesh.
     Curvature {
@@ -124,7 +123,7 @@ impl Sizing {
     /// The largest size anywhere (the cap of curvature sizing).
     pub fn largest(&self) -> f64 {
         match self {
-            Sizing::Uniform { size, .. } => *size,
+            Sizing::Uniform(h) => *h,
             Sizing::Curvature { per_triangle, .. } => {
                 per_triangle.iter().copied().fold(0.0, f64::max)
             }
@@ -142,18 +141,8 @@ impl Sizing {
         shrink: &[f64],
     ) -> Vec<f64> {
         match self {
-            &Sizing::Uniform { size: h, gradation } => {
-                let mut size: Vec<f64> = vertices
-                    .iter()
-                    .map(|v| (h * shrink[v.at.tri as usize]).max(h * 1e-3))
-                    .collect();
-                // Graded where a tolerance shrank some triangles' sizes.
-                if shrink.iter().any(|&f| f < 1.0) {
-                    grade(mesh, vertices, &mut size, gradation);
-                    smooth_down(mesh, &mut size);
-                }
-                size
-            }
+            // No tolerance: nothing shrinks.
+            Sizing::Uniform(h) => vec![*h; vertices.len()],
             Sizing::Curvature {
                 per_triangle,
                 tolerance,
