@@ -134,22 +134,43 @@ fn check_invariants(name: &str, surface: &Surface, mesh: &SurfaceMesh) {
 /// Every `step`-th triangle faces the way the surface does at its
 /// centroid's closest point, and carries the face of the control triangle
 /// that point lies in (certified snap).
+///
+/// Where the control net folds back onto itself (pig's triangles 534 and
+/// 535 meet at 179.99°), the surface's two sheets pass within 1e-6 of each
+/// other, and the closest point may lie on the sheet the triangle does not
+/// approximate. There the triangle must face as its own sheet does: at the
+/// local minimum of the distance found from its vertices' parameters,
+/// nearer than 1% of its longest side, with the two sheets' normals
+/// opposed. Such triangles are counted and printed.
 fn check_orientation_and_faces(name: &str, surface: &Surface, mesh: &SurfaceMesh, step: usize) {
     let faces = surface.model().face_of_triangle();
     let mut wrong_face = 0;
+    let mut at_folds = 0;
     for t in (0..mesh.triangles.len()).step_by(step) {
         let [a, b, c] = mesh.triangles[t].map(|i| mesh.points[i as usize]);
-        let n = (b - a).cross(c - a);
-        let snap = surface.closest_point((a + b + c) / 3.0).unwrap();
+        let n = (b - a).cross(c - a).normalize();
+        let centroid = (a + b + c) / 3.0;
+        let snap = surface.closest_point(centroid).unwrap();
         let normal = surface.normal(snap.tri, snap.v, snap.w).unwrap();
-        assert!(
-            n.dot(normal) > 0.0,
-            "{name}: triangle {t} faces against the surface"
-        );
+        if n.dot(normal) <= 0.0 {
+            let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
+            let own = mesh.triangles[t].iter().any(|&i| {
+                let at = mesh.params[i as usize];
+                surface
+                    .project(centroid, at.tri as usize, at.v, at.w)
+                    .is_ok_and(|p| {
+                        let m = surface.normal(p.tri, p.v, p.w).unwrap();
+                        p.distance <= 0.01 * longest && m.dot(n) > 0.0 && m.dot(normal) < -0.9
+                    })
+            });
+            assert!(own, "{name}: triangle {t} faces against the surface");
+            at_folds += 1;
+        }
         if faces[snap.tri] != mesh.faces[t] {
             wrong_face += 1;
         }
     }
+    println!("{name}: {at_folds} triangles face their own sheet at a fold of the control net");
     // A centroid within round-off of a crease may snap onto its other side.
     assert!(
         wrong_face * 1000 <= mesh.triangles.len() / step,
@@ -206,12 +227,7 @@ fn quality_beats_cgal_at_the_same_size() {
         );
         assert!(q.edge_lengths[3] <= 1.34 * h, "{name}: edge spread");
         check_invariants(name, &surface, &mesh);
-        // Sampled: over every triangle, 2 of pig's face against the
-        // surface normal at their centroid's closest point (1e-5 and 1e-6
-        // of the diagonal away), while the normals at their own three
-        // vertices agree with them; not yet explained (issue 17).
-        let step = (mesh.triangles.len() / 3000).max(1);
-        check_orientation_and_faces(name, &surface, &mesh, step);
+        check_orientation_and_faces(name, &surface, &mesh, 1);
     }
 }
 

@@ -453,6 +453,61 @@ impl Connectivity {
         }
     }
 
+    /// Drops dead slots and renumbers: `order` lists the live vertices in
+    /// their new order (vertex `order[i]` becomes i), and triangles follow
+    /// in the order of their smallest new corner. The passes walk the mesh
+    /// by index and touch each element's neighbours, so an order in which
+    /// neighbours are near in memory keeps those walks in cache.
+    pub(crate) fn renumber(&mut self, order: &[u32]) {
+        let mut new_vertex = vec![NONE; self.out.len()];
+        for (i, &v) in order.iter().enumerate() {
+            new_vertex[v as usize] = i as u32;
+        }
+        let mut triangles: Vec<(u32, u32)> = (0..self.face.len() as u32)
+            .filter(|&t| self.is_alive(3 * t))
+            .map(|t| {
+                let first = self.corners(3 * t).map(|v| new_vertex[v as usize]);
+                (first.into_iter().min().unwrap_or(NONE), t)
+            })
+            .collect();
+        triangles.sort_unstable();
+        let mut new_half = vec![NONE; self.origin.len()];
+        for (i, &(_, t)) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                new_half[(3 * t + k) as usize] = 3 * i as u32 + k;
+            }
+        }
+        let map = |h: u32| {
+            if h == NONE {
+                NONE
+            } else {
+                new_half[h as usize]
+            }
+        };
+        let half_edges = triangles.iter().flat_map(|&(_, t)| 3 * t..3 * t + 3);
+        let origin = half_edges
+            .clone()
+            .map(|h| new_vertex[self.origin[h as usize] as usize])
+            .collect();
+        let opposite = half_edges
+            .clone()
+            .map(|h| map(self.opposite[h as usize]))
+            .collect();
+        let edge_label = half_edges.map(|h| self.edge_label[h as usize]).collect();
+        let face = triangles
+            .iter()
+            .map(|&(_, t)| self.face[t as usize])
+            .collect();
+        let out = order.iter().map(|&v| map(self.out[v as usize])).collect();
+        *self = Connectivity {
+            origin,
+            opposite,
+            edge_label,
+            face,
+            out,
+        };
+    }
+
     /// The live triangles in slot order, with their face labels and a map
     /// from vertex to its compacted index (`NONE` for dead vertices).
     pub(crate) fn compact(&self) -> (Vec<[u32; 3]>, Vec<u32>, Vec<u32>) {

@@ -226,6 +226,7 @@ impl<'a> Remesher<'a> {
                     )));
                 }
                 work.collapse_short();
+                work.renumber();
                 work.equalize_valences();
                 work.relax();
             }

@@ -50,6 +50,37 @@ impl<'a> Remeshing<'a> {
         }
     }
 
+    /// Drops dead vertices and triangles and renumbers both along a
+    /// Z-order curve through the vertices' positions
+    /// ([`Connectivity::renumber`]): splits append their vertices at the
+    /// end and collapses leave holes, and after a round the passes' walks
+    /// would jump across memory at every step.
+    pub fn renumber(&mut self) {
+        let live: Vec<u32> = (0..self.vertices.len() as u32)
+            .filter(|&v| self.mesh.is_vertex_alive(v))
+            .collect();
+        let (lo, hi) = live.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &v| {
+                let x = self.vertices[v as usize].x;
+                (lo.min(x), hi.max(x))
+            },
+        );
+        let scale = (Z_CELLS - 1.0) / (hi - lo).max_element().max(f64::MIN_POSITIVE);
+        let mut keyed: Vec<(u64, u32)> = live
+            .par_iter()
+            .map(|&v| {
+                let q = ((self.vertices[v as usize].x - lo) * scale).as_uvec3();
+                (z_order(q.x) | z_order(q.y) << 1 | z_order(q.z) << 2, v)
+            })
+            .collect();
+        keyed.par_sort_unstable();
+        let order: Vec<u32> = keyed.into_iter().map(|(_, v)| v).collect();
+        self.mesh.renumber(&order);
+        self.vertices = order.iter().map(|&v| self.vertices[v as usize]).collect();
+        self.size = order.iter().map(|&v| self.size[v as usize]).collect();
+    }
+
     fn target(&self, a: u32, b: u32) -> f64 {
         0.5 * (self.size[a as usize] + self.size[b as usize])
     }
@@ -124,7 +155,17 @@ impl<'a> Remeshing<'a> {
         if let Some(worst) = free {
             return worst;
         }
+        // No free corner: a triangle whose corners all lie on features can
+        // span what its face does not (across a re-entrant corner of a flat
+        // face), and there its centroid lies far off the surface.
         let s = self.placer.surface;
+        let at = self.placer.guess_in(vertex(ids[0]), face);
+        let off = s
+            .project((p[0] + p[1] + p[2]) / 3.0, at.tri as usize, at.v, at.w)
+            .map_or(0.0, |snap| snap.distance);
+        if off * off > OFF_SURFACE * OFF_SURFACE * scale {
+            return f64::NEG_INFINITY;
+        }
         ids.iter()
             .find_map(|&v| {
                 let at = self.placer.guess_in(vertex(v), face);
@@ -145,15 +186,23 @@ impl<'a> Remeshing<'a> {
         new: impl IntoIterator<Item = ([u32; 3], u32, Moved<'v>)>,
         old: impl IntoIterator<Item = ([u32; 3], u32, Moved<'v>)>,
     ) -> bool {
-        let worst = |tris: &mut dyn Iterator<Item = ([u32; 3], u32, Moved<'v>)>| {
-            tris.map(|(ids, face, moved)| self.alignment(ids, face, moved))
-                .fold(f64::INFINITY, f64::min)
-        };
-        let fresh = worst(&mut new.into_iter());
+        let fresh = self.worst_alignment(new);
         if fresh >= MIN_COSINE {
             return true;
         }
-        fresh > f64::NEG_INFINITY && fresh >= worst(&mut old.into_iter())
+        fresh > f64::NEG_INFINITY && fresh >= self.worst_alignment(old)
+    }
+
+    /// The smallest [`Remeshing::alignment`] of triangles `tris`.
+    fn worst_alignment<'v>(
+        &self,
+        tris: impl IntoIterator<Item = ([u32; 3], u32, Moved<'v>)>,
+    ) -> f64 {
+        let mut worst = f64::INFINITY;
+        for (ids, face, moved) in tris {
+            worst = worst.min(self.alignment(ids, face, moved));
+        }
+        worst
     }
 
     /// The worse smallest-angle cosine of the two triangles (a, b, c) and
@@ -284,19 +333,27 @@ impl<'a> Remeshing<'a> {
     /// the features allow and no edge of the result exceeds
     /// [`SPLIT_ABOVE`] × its target. Returns the count.
     pub fn collapse_short(&mut self) -> usize {
+        let is_short = |this: &Self, h: u32| {
+            let (a, b) = (this.mesh.origin(h), this.mesh.dest(h));
+            this.length(h) < COLLAPSE_BELOW * this.target(a, b)
+        };
+        // The short edges of the mesh as it is, found in parallel; each is
+        // checked again when its turn comes, as earlier collapses may have
+        // removed or lengthened it. (An edge that an earlier collapse
+        // shortens waits for the next round.)
+        let short: Vec<u32> = (0..self.mesh.num_half_edges())
+            .into_par_iter()
+            .filter(|&h| {
+                let g = self.mesh.opposite(h);
+                self.mesh.is_alive(h) && (g == NONE || h < g) && is_short(self, h)
+            })
+            .collect();
         let mut done = 0;
-        for h in 0..self.mesh.num_half_edges() {
-            if !self.mesh.is_alive(h) {
-                continue;
-            }
-            let g = self.mesh.opposite(h);
-            if g != NONE && g < h {
+        for h in short {
+            if !self.mesh.is_alive(h) || !is_short(self, h) {
                 continue;
             }
             let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
-            if self.length(h) >= COLLAPSE_BELOW * self.target(a, b) {
-                continue;
-            }
             for remove in [a, b] {
                 if self.can_collapse(h, remove) {
                     self.mesh.collapse(h, remove);
@@ -672,14 +729,16 @@ impl<'a> Remeshing<'a> {
     /// cosine above it unless it had one already. Returns the number moved.
     fn apply_moves(&mut self, targets: Vec<Option<Vertex>>, floor: Option<f64>) -> usize {
         let mut moved = 0;
+        let mut around: Vec<([u32; 3], u32)> = Vec::new();
         for (v, target) in targets.into_iter().enumerate() {
             let Some(target) = target else { continue };
             let v = v as u32;
-            let around: Vec<([u32; 3], u32)> = self
-                .mesh
-                .outgoing(v)
-                .map(|h| (self.mesh.corners(h), self.face(h)))
-                .collect();
+            around.clear();
+            around.extend(
+                self.mesh
+                    .outgoing(v)
+                    .map(|h| (self.mesh.corners(h), self.face(h))),
+            );
             let worst = |moved| {
                 around
                     .iter()
@@ -792,6 +851,10 @@ impl<'a> Remeshing<'a> {
     }
 }
 
+/// A triangle with no free corner whose centroid lies farther than this
+/// times its longest side from the surface spans off its face.
+const OFF_SURFACE: f64 = 0.2;
+
 /// A free vertex with an angle above this (degrees) opposite a curve edge
 /// is a cap ([`Remeshing::remove_caps`]).
 const CAP_ANGLE: f64 = 120.0;
@@ -803,3 +866,18 @@ const SHAKE_WORST_COSINE: f64 = 0.866;
 /// A valence flip may not make the worse triangle's smallest angle smaller
 /// than acos of this (about 25°), unless it improves it.
 const FLIP_WORST_COSINE: f64 = 0.906;
+
+/// Cells per axis of [`Remeshing::renumber`]'s Z-order grid (21 bits, so
+/// that three interleaved fit in 64).
+const Z_CELLS: f64 = (1u32 << 21) as f64;
+
+/// The bits of x (below 2²¹) spread to every third bit.
+fn z_order(x: u32) -> u64 {
+    let mut x = x as u64 & 0x1f_ffff;
+    x = (x | x << 32) & 0x1f_0000_0000_ffff;
+    x = (x | x << 16) & 0x1f_0000_ff00_00ff;
+    x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+    x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+    x = (x | x << 2) & 0x1249_2492_4924_9249;
+    x
+}
