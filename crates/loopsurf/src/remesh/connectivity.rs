@@ -592,6 +592,53 @@ mod tests {
         }
     }
 
+    #[test]
+    fn renumbering_drops_the_dead_and_keeps_the_mesh() {
+        let mut m = fan();
+        // Label a rim edge and give the triangles distinct faces, so that
+        // both labels are seen to travel with their elements.
+        m.face = (10..16).collect();
+        let h = m.find(1, 2).unwrap();
+        m.edge_label[h as usize] = 7;
+        let spoke = m.find(0, 4).unwrap();
+        m.collapse(spoke, 4);
+        check(&m);
+        let before: Vec<([u32; 3], u32)> = (0..m.face.len() as u32)
+            .filter(|&t| m.is_alive(3 * t))
+            .map(|t| (m.corners(3 * t), m.face[t as usize]))
+            .collect();
+        // Vertex 4 is dead; the others in reverse.
+        let order = [6, 5, 3, 2, 1, 0];
+        m.renumber(&order);
+        check(&m);
+        assert_eq!(m.num_vertices(), 6);
+        assert_eq!(m.num_half_edges() as usize, 3 * before.len());
+        let old = |v: u32| order[v as usize];
+        // The same triangles (up to rotation), with their faces.
+        let mut after: Vec<([u32; 3], u32)> = (0..m.face.len() as u32)
+            .map(|t| (m.corners(3 * t).map(old), m.face[t as usize]))
+            .collect();
+        let canonical = |(c, f): ([u32; 3], u32)| {
+            let k = (0..3).min_by_key(|&k| c[k]).unwrap();
+            ([c[k], c[(k + 1) % 3], c[(k + 2) % 3]], f)
+        };
+        let mut before: Vec<_> = before.into_iter().map(canonical).collect();
+        after = after.into_iter().map(canonical).collect();
+        before.sort();
+        after.sort();
+        assert_eq!(before, after);
+        let rim = m.find(4, 3).unwrap();
+        assert_eq!(
+            m.edge_label[rim as usize], 7,
+            "the label moved with its edge"
+        );
+        // Triangles follow their smallest new corner.
+        let firsts: Vec<u32> = (0..m.face.len() as u32)
+            .map(|t| m.corners(3 * t).into_iter().min().unwrap())
+            .collect();
+        assert!(firsts.windows(2).all(|w| w[0] <= w[1]));
+    }
+
     fn euler(m: &Connectivity) -> i64 {
         let (tris, _, index) = m.compact();
         let v = index.iter().filter(|&&i| i != NONE).count() as i64;
