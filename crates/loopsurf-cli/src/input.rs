@@ -109,6 +109,7 @@ impl Input {
             }
             (None, None) => return Err(Error::InvalidArgument("no mesh given".into())),
         };
+        warn_of_folds(&net, &self.name());
         if let Some(deg) = self.hard_angle {
             net.tag_by_angle(deg)?;
         }
@@ -132,6 +133,26 @@ impl Input {
         Ok(net)
     }
 }
+
+/// Says on stderr where the net folds back on itself (normals turning by
+/// more than [`FOLD_DEGREES`]): not an error, since the surface is well
+/// defined, but the fin it makes there spoils any mesh of it, and the user
+/// should know why before looking at one.
+fn warn_of_folds(net: &ControlNet, name: &str) {
+    let folds = net.folds(FOLD_DEGREES);
+    let Some(worst) = folds.first() else { return };
+    let [a, b] = worst.edge;
+    let [s, t] = worst.triangles;
+    eprintln!(
+        "loopsurf: {name}: warning: the net folds back on itself at {} edge{} (worst: vertices {a}–{b}, between triangles {s} and {t}, normals turning by {:.1}°); the surface has a fin there, and triangles on it will be poor",
+        folds.len(),
+        if folds.len() == 1 { "" } else { "s" },
+        worst.degrees
+    );
+}
+
+/// Normals turning by more than this across an edge are a fold.
+const FOLD_DEGREES: f64 = 150.0;
 
 fn located(path: &Path, line: usize, message: &str) -> Error {
     Error::Malformed {

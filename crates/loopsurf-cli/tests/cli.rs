@@ -650,6 +650,28 @@ fn repairs_are_asked_for_and_reported() {
     );
 }
 
+#[test]
+fn a_net_that_folds_back_is_named_in_a_warning() {
+    // A strip whose second triangle lies folded back almost onto the first.
+    let path = scratch("folded.off");
+    std::fs::write(
+        &path,
+        "OFF\n4 2 0\n0 0 0\n1 0 0\n0.5 1 0\n0.5 1 0.001\n3 0 1 2\n3 1 0 3\n",
+    )
+    .unwrap();
+    let file = path.to_str().unwrap();
+    let out = loopsurf(&["info", file]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains(&format!(
+            "loopsurf: {file}: warning: the net folds back on itself at 1 edge"
+        )) && err.contains("vertices 0–1, between triangles 0 and 1"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
+
 /// The values of the named array of a .vtu file, as text.
 fn vtu_array(xml: &str, name: &str) -> Vec<String> {
     let start = xml

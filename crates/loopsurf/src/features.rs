@@ -7,7 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::is_degenerate;
-use crate::topology::Topology;
+use crate::topology::{Topology, NONE};
 use glam::DVec3;
 
 /// How a vertex is subdivided and where its limit lies.
@@ -113,21 +113,12 @@ impl Features {
             )));
         }
         let threshold = degrees.to_radians();
-        let corners = |t: u32| topo.triangles()[t as usize].map(|i| points[i as usize]);
-        let normal = |t: u32| {
-            let [a, b, c] = corners(t);
-            (b - a).cross(c - a)
-        };
         let mut tagged = 0;
-        for (e, &[t0, t1]) in topo.edge_triangles().iter().enumerate() {
-            // A zero-area triangle has no normal, so its edges no angle.
-            if self.hard_edge[e] || is_degenerate(corners(t0)) || is_degenerate(corners(t1)) {
+        for e in 0..topo.num_edges() {
+            if self.hard_edge[e] {
                 continue;
             }
-            let (n0, n1) = (normal(t0), normal(t1));
-            // atan2 of |sin| and cos stays accurate near 0° and 180°.
-            let angle = n0.cross(n1).length().atan2(n0.dot(n1));
-            if angle > threshold {
+            if dihedral_angle(topo, points, e).is_some_and(|angle| angle > threshold) {
                 self.hard_edge[e] = true;
                 tagged += 1;
             }
@@ -217,4 +208,24 @@ pub(crate) fn classify(tagged: bool, degree: u32, hard: u32) -> VertexKind {
         2 => VertexKind::Crease,
         _ => VertexKind::Corner,
     }
+}
+
+/// The angle (radians) between the normals of interior edge e's two
+/// triangles: 0 where they are coplanar, π where they fold back onto each
+/// other. `None` on a boundary, or where a triangle has zero area (no
+/// normal).
+pub(crate) fn dihedral_angle(topo: &Topology, points: &[DVec3], e: usize) -> Option<f64> {
+    let [t0, t1] = topo.edge_triangles()[e];
+    if t0 == NONE || t1 == NONE {
+        return None;
+    }
+    let corners = |t: u32| topo.triangles()[t as usize].map(|i| points[i as usize]);
+    let (c0, c1) = (corners(t0), corners(t1));
+    if is_degenerate(c0) || is_degenerate(c1) {
+        return None;
+    }
+    let normal = |[a, b, c]: [DVec3; 3]| (b - a).cross(c - a);
+    let (n0, n1) = (normal(c0), normal(c1));
+    // atan2 of |sin| and cos stays accurate near 0° and 180°.
+    Some(n0.cross(n1).length().atan2(n0.dot(n1)))
 }

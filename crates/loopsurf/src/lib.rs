@@ -49,7 +49,7 @@ pub use error::{Element, Error, Result};
 pub use features::{Features, VertexKind};
 pub use glam::DVec3;
 pub use mesh::{Density, Mesher, SurfaceMesh};
-pub use net::ControlNet;
+pub use net::{ControlNet, Fold};
 pub use refine::{Refinement, SurfacePoint};
 pub use remesh::Remesher;
 pub use snap::Snap;
