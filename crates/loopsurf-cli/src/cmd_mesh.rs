@@ -4,7 +4,7 @@ use crate::curved_output::{self, CurvedFormat};
 use crate::input::{Input, SurfaceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use loopsurf::io::{self, DataArray};
-use loopsurf::{Density, Error, Mesher, Remesher, SurfaceMesh};
+use loopsurf::{Density, Error, Mesher, Remesher, Surface, SurfaceMesh};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -137,6 +137,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         write_params(path, &mesh)?;
     }
     let quality = mesh.quality();
+    warn_of_surface_folds(&surface, &mesh);
     let relative = |d: f64| d / mesh.diagonal;
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
@@ -292,4 +293,36 @@ fn write_params(path: &Path, mesh: &SurfaceMesh) -> Result<(), Error> {
         writeln!(out, "{} {} {}", p.tri, p.v, p.w).map_err(io_error)?;
     }
     out.flush().map_err(io_error)
+}
+
+/// Says on stderr where triangles below 10° lie on patches of the surface
+/// that fold over themselves ([`Surface::is_folded`]): no mesh of a fold
+/// is good, and the user should look at the control net there rather than
+/// at the mesher. Only the control triangles under such triangles are
+/// checked, so a good mesh costs nothing.
+fn warn_of_surface_folds(surface: &Surface, mesh: &SurfaceMesh) {
+    let mut suspects: Vec<usize> = mesh
+        .triangle_quality()
+        .iter()
+        .zip(&mesh.triangles)
+        .filter(|(q, _)| q.min_angle < 10.0)
+        .flat_map(|(_, t)| t.map(|v| mesh.params[v as usize].tri as usize))
+        .collect();
+    suspects.sort_unstable();
+    suspects.dedup();
+    let folded: Vec<usize> = suspects
+        .into_iter()
+        .filter(|&t| surface.is_folded(t))
+        .collect();
+    if folded.is_empty() {
+        return;
+    }
+    let shown: Vec<String> = folded.iter().take(8).map(|t| t.to_string()).collect();
+    eprintln!(
+        "loopsurf: warning: triangles below 10° lie where the surface folds over itself, in {} control triangle{} ({}{}): no mesh of a fold is good; look at the net's corners, creases and irregular vertices there",
+        folded.len(),
+        if folded.len() == 1 { "" } else { "s" },
+        shown.join(", "),
+        if folded.len() > 8 { ", ..." } else { "" }
+    );
 }

@@ -672,6 +672,33 @@ fn a_net_that_folds_back_is_named_in_a_warning() {
     assert_eq!(err.lines().count(), 1, "{err}");
 }
 
+#[test]
+fn a_mesh_of_a_folded_surface_says_where_it_folds() {
+    // CGAL's hole.off (a box with a square hole), triangulated: at 40° its
+    // faces fold over themselves beside the hole's rim.
+    let path = scratch("hole.off");
+    std::fs::write(&path, "OFF\n20 40 0\n10 10 10\n10 10 -10\n-10.0989 5.15251 5.15251\n10.1031 4.94845 4.94845\n-10.0989 5.15251 -5.15251\n10.1031 4.94845 -4.94845\n-10 10 10\n10 -10 10\n-10.0989 -5.15251 5.15251\n10.1031 -4.94845 4.94845\n-10 10 -10\n-10 -10 10\n0 -10.2041 0\n0 0 10.2041\n0 10.2041 0\n0 0 -10.2041\n-10 -10 -10\n10 -10 -10\n-10.0989 -5.15251 -5.15251\n10.1031 -4.94845 -4.94845\n3 13 7 0\n3 6 13 0\n3 6 0 14\n3 14 0 1\n3 1 0 3\n3 1 3 5\n3 7 9 3\n3 7 3 0\n3 11 7 13\n3 11 13 6\n3 17 19 9\n3 17 9 7\n3 12 17 7\n3 11 12 7\n3 8 11 6\n3 8 6 2\n3 4 2 6\n3 4 6 10\n3 10 6 14\n3 10 14 1\n3 17 1 5\n3 17 5 19\n3 10 1 15\n3 15 1 17\n3 5 4 18\n3 18 19 5\n3 3 2 4\n3 4 5 3\n3 8 2 3\n3 8 3 9\n3 18 8 9\n3 18 9 19\n3 16 12 11\n3 18 16 11\n3 18 11 8\n3 16 17 12\n3 16 15 17\n3 18 4 10\n3 18 10 16\n3 16 10 15\n").unwrap();
+    let out_path = scratch("hole-mesh.off");
+    let out = loopsurf(&[
+        "mesh",
+        path.to_str().unwrap(),
+        "--hard-angle",
+        "40",
+        "--adapt",
+        "curvature",
+        "--no-verify",
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("warning: triangles below 10° lie where the surface folds over itself, in ")
+            && err.contains(" control triangles (4, 5, "),
+        "{err}"
+    );
+}
+
 /// The values of the named array of a .vtu file, as text.
 fn vtu_array(xml: &str, name: &str) -> Vec<String> {
     let start = xml

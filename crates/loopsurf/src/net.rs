@@ -24,17 +24,6 @@ pub struct ControlNet {
     repairs: Vec<Repair>,
 }
 
-/// An edge where the net folds back on itself ([`ControlNet::folds`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Fold {
-    /// Its vertices, i < j.
-    pub edge: [u32; 2],
-    /// Its two triangles.
-    pub triangles: [u32; 2],
-    /// How far their normals turn, in degrees (180: folded flat).
-    pub degrees: f64,
-}
-
 impl ControlNet {
     /// Reads and validates a mesh file (.off .obj .ply .stl .tri).
     pub fn read(path: impl AsRef<Path>) -> Result<ControlNet> {
@@ -239,29 +228,6 @@ impl ControlNet {
         self.features
             .tag_by_angle(&self.topo, &self.points, degrees)
     }
-    /// The interior edges where the net folds back on itself: the normals
-    /// of their two triangles turn by more than `degrees` (150 finds
-    /// pig.off's near-degenerate triangle 534, folded back between its
-    /// neighbours), largest turn first. The limit surface has a fin along
-    /// such an edge, which a hard angle below the turn makes a crease; a
-    /// mesh of the fin has poor triangles whatever the mesher, so callers
-    /// warn (the `loopsurf` command does) rather than refuse.
-    pub fn folds(&self, degrees: f64) -> Vec<Fold> {
-        let threshold = degrees.to_radians();
-        let mut folds: Vec<Fold> = (0..self.topo.num_edges())
-            .filter_map(|e| {
-                let angle = crate::features::dihedral_angle(&self.topo, &self.points, e)?;
-                (angle > threshold).then(|| Fold {
-                    edge: self.topo.edges()[e],
-                    triangles: self.topo.edge_triangles()[e],
-                    degrees: angle.to_degrees(),
-                })
-            })
-            .collect();
-        folds.sort_by(|a, b| b.degrees.total_cmp(&a.degrees));
-        folds
-    }
-
     /// Hard edges as (i, j) with i < j, in edge order (first appearance in
     /// the triangle list), boundary edges included.
     pub fn hard_edges(&self) -> Vec<[u32; 2]> {
@@ -452,39 +418,6 @@ mod tests {
     fn net(name: &str) -> ControlNet {
         let e = examples::by_name(name).unwrap();
         ControlNet::from_arrays(e.points, &e.tris).unwrap()
-    }
-
-    /// Folds are found by the turn of the normals across an edge: none
-    /// on a flat strip, every edge of a tetrahedron (109.47°) at 100° but
-    /// none at 150°, and the edge of a strip whose second triangle is
-    /// folded back almost onto the first.
-    #[test]
-    fn folds_are_edges_whose_normals_turn_back() {
-        let strip = |z: f64, y: f64| {
-            let points = [
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.5, 1.0, 0.0],
-                [0.5, y, z],
-            ];
-            let points = points.map(glam::DVec3::from).to_vec();
-            ControlNet::from_arrays(points, &[[0, 1, 2], [1, 0, 3]]).unwrap()
-        };
-        assert!(strip(0.0, -1.0).folds(1.0).is_empty());
-        let folded = strip(1e-3, 1.0).folds(150.0);
-        assert_eq!(folded.len(), 1);
-        assert_eq!(folded[0].edge, [0, 1]);
-        assert_eq!(folded[0].triangles, [0, 1]);
-        assert!((folded[0].degrees - 180.0).abs() < 0.1, "{folded:?}");
-        let tetra = net("tetra");
-        assert!(tetra.folds(150.0).is_empty());
-        let all = tetra.folds(100.0);
-        assert_eq!(all.len(), 6);
-        let regular = 180.0 - (1.0f64 / 3.0).acos().to_degrees();
-        assert!(
-            all.iter().all(|f| (f.degrees - regular).abs() < 1e-9),
-            "{all:?}"
-        );
     }
 
     /// A limit mask is a left eigenvector of the subdivision matrix for

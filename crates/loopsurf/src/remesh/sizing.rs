@@ -12,7 +12,8 @@
 //! parameter space, so they do not drift as the vertices move; each vertex
 //! takes its own triangle's, or the size of the curvature at the vertex
 //! itself where that is smaller (next to an irregular vertex, where the
-//! curvature grows without bound), down to a quarter of the triangle's.
+//! curvature grows without bound), down to a quarter of the triangle's
+//! on a patch that folds over itself.
 //! The chord error is then measured, not trusted (see the module above),
 //! and where it is exceeded the control triangles involved shrink their
 //! size.
@@ -24,22 +25,24 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
+use std::sync::OnceLock;
 
 /// Size² · κ / ε for an equilateral triangle at 4/3 of its target size
 /// to meet the tolerance at its centroid (see the module doc).
 const CHORD_FACTOR: f64 = 6.0 * 9.0 / 16.0;
 
-/// A vertex's own curvature may make its size at most this factor smaller
-/// than its control triangle's. Next to an irregular vertex of high
-/// valence the curvature can be huge where the chord error is not: in
-/// anchor.off's flat fans around vertices of valence 34, 22 and 20 the
-/// surface wrinkles by 1e-7 of the diagonal, folding over itself (its
-/// normal flips), with curvatures up to 300 times the diagonal's inverse.
-/// Unbounded, the sizes ran away towards those vertices (42 434
-/// triangles, 19% of them below 20°, in 9.6 s); bounded, 17 172 triangles,
-/// 0.19%, within the tolerance. Finer sizes come from the measured chord
-/// error, which shrinks them where it is missed. (Bounds of 8, 16 and 64
-/// left 0.47%, 0.89% and 2.9% below 20°.)
+/// On a patch that folds over itself ([`Surface::is_folded`]), a vertex's
+/// own curvature may make its size at most this factor smaller than its
+/// control triangle's. There the curvature says nothing of the chord
+/// error: in anchor.off's flat fans around vertices of valence 34, 22 and
+/// 20 the surface wrinkles by 1e-7 of the diagonal, its normal flipping,
+/// with curvatures up to 300 times the diagonal's inverse. Unbounded, the
+/// sizes ran away towards those vertices (42 434 triangles, 19% of them
+/// below 20°, in 9.6 s); bounded, 17 172 triangles, 0.19%, within the
+/// tolerance. Elsewhere the curvature at a vertex is real and refines
+/// without this bound: bounded everywhere, joint.off grew from 12 260 to
+/// 1.1 million triangles, its chord error missed next to irregular
+/// vertices and whole control triangles shrunk instead.
 const VERTEX_REFINEMENT: f64 = 4.0;
 
 /// How the target edge length is set.
@@ -54,6 +57,9 @@ pub(crate) enum Sizing {
         tolerance: f64,
         floor: f64,
         gradation: f64,
+        /// Per control triangle, once asked: whether its patch folds
+        /// ([`Surface::is_folded`]; see [`VERTEX_REFINEMENT`]).
+        folded: Vec<OnceLock<bool>>,
     },
 }
 
@@ -115,7 +121,7 @@ impl Sizing {
         floor: f64,
         gradation: f64,
     ) -> Sizing {
-        let per_triangle = (0..surface.net().triangles().len())
+        let per_triangle: Vec<f64> = (0..surface.net().triangles().len())
             .into_par_iter()
             .map(|t| {
                 let k = largest_curvature(surface, t);
@@ -127,6 +133,7 @@ impl Sizing {
             })
             .collect();
         Sizing::Curvature {
+            folded: (0..per_triangle.len()).map(|_| OnceLock::new()).collect(),
             per_triangle,
             tolerance,
             floor,
@@ -162,6 +169,7 @@ impl Sizing {
                 tolerance,
                 floor,
                 gradation,
+                folded,
             } => {
                 let mut size: Vec<f64> = vertices
                     .par_iter()
@@ -169,7 +177,13 @@ impl Sizing {
                         let t = v.at.tri as usize;
                         let k = curvature_at(surface, t, v.at.v, v.at.w);
                         let own = (CHORD_FACTOR * tolerance / k).sqrt();
-                        let own = own.max(per_triangle[t] / VERTEX_REFINEMENT);
+                        let least = per_triangle[t] / VERTEX_REFINEMENT;
+                        let own = if own < least && *folded[t].get_or_init(|| surface.is_folded(t))
+                        {
+                            least
+                        } else {
+                            own
+                        };
                         (per_triangle[t].min(own) * shrink[t]).max(*floor)
                     })
                     .collect();
