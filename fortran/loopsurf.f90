@@ -130,6 +130,14 @@ module loopsurf
             type(c_ptr), value :: surface
             integer(c_size_t), intent(out) :: ntris
         end function
+        ! 0-based control triangle indices (int32), freed with ls_free_array.
+        integer(c_int) function ls_surface_folded_patches(surface, n, triangles) &
+                bind(C, name="ls_surface_folded_patches")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), intent(out) :: n
+            type(c_ptr), intent(out) :: triangles
+        end function
         integer(c_int) function ls_evaluate(surface, tri, v, w, result) bind(C, name="ls_evaluate")
             import :: c_int, c_int32_t, c_double, c_ptr
             type(c_ptr), value :: surface

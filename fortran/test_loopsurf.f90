@@ -159,6 +159,9 @@ program test_loopsurf
         == LS_ERR_INVALID_ARGUMENT, "adapt levels 11")
     call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
     call ls_free_array(rxyz)
+    ! The octahedron's surface does not fold.
+    call check(ls_surface_folded_patches(surf, n, rxyz) == LS_OK .and. n == 0, "folded patches")
+    call ls_free_array(rxyz)
 
     ! A surface point snaps to itself; the triangle comes back 1-based.
     call check(loopsurf_evaluate(surf, 4, 0.2d0, 0.3d0, r) == LS_OK, "eval for snap")

@@ -590,6 +590,15 @@ int ls_surface_build_interpolating(const ls_net *net, int mode, ls_surface **out
 // triangle indices are 0 to ntris − 1.
 int ls_surface_num_triangles(const ls_surface *surface, size_t *ntris);
 
+// The control triangles whose patch of the limit surface folds over
+// itself (normals within it turning by more than 120°; coarse nets fold
+// next to corners, creases and irregular vertices of high valence, and no
+// mesh of a fold has good triangles that all face one way): `n` 0-based
+// indices, ascending, in a new array (allocated even when n = 0)
+// released with `ls_free_array`. Every patch is evaluated, about 150
+// times.
+int ls_surface_folded_patches(const ls_surface *surface, size_t *n, int32_t **triangles);
+
 // Exact position and derivatives at (v, w) of triangle `tri` (barycentric
 // weights 1 − v − w, v, w on its corners): 18 doubles X, Xv, Xw, Xvv, Xvw,
 // Xww. Exactly at an irregular, crease, dart or corner vertex the

@@ -203,6 +203,19 @@ static void test_nets(const char* data_dir) {
     EXPECT(ls_net_load(path, &net), LS_OK);
     EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
     CHECK(nv == 468 && nt == 891 && nh == 55); /* its 7 boundary loops are hard */
+    /* Its limit surface folds over itself in two patches (tests/folds.rs
+       checks them against the refined net). */
+    ls_surface* surface = NULL;
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+    size_t nfolded = 99;
+    int32_t* folded = NULL;
+    EXPECT(ls_surface_folded_patches(NULL, &nfolded, &folded), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_folded_patches(surface, NULL, &folded), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_folded_patches(surface, &nfolded, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_surface_folded_patches(surface, &nfolded, &folded), LS_OK);
+    CHECK(nfolded == 2 && folded[0] == 43 && folded[1] == 46);
+    ls_free_array(folded);
+    ls_surface_free(surface);
     ls_net_free(net);
 }
 

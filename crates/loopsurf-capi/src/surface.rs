@@ -73,6 +73,33 @@ pub unsafe extern "C" fn ls_surface_num_triangles(
     })
 }
 
+/// The control triangles whose patch of the limit surface folds over
+/// itself (normals within it turning by more than 120°; coarse nets fold
+/// next to corners, creases and irregular vertices of high valence, and no
+/// mesh of a fold has good triangles that all face one way): `n` 0-based
+/// indices, ascending, in a new array (allocated even when n = 0)
+/// released with `ls_free_array`. Every patch is evaluated, about 150
+/// times.
+#[no_mangle]
+pub unsafe extern "C" fn ls_surface_folded_patches(
+    surface: *const ls_surface,
+    n: *mut usize,
+    triangles: *mut *mut i32,
+) -> c_int {
+    run("ls_surface_folded_patches", || {
+        let surface = &input(surface, "surface")?.0;
+        let (n, triangles) = (output(n, "n")?, output(triangles, "triangles")?);
+        let folded: Vec<i32> = surface
+            .folded_patches()
+            .into_iter()
+            .map(|t| t as i32)
+            .collect();
+        *triangles = crate::buffers::malloc_copy(&folded)?;
+        *n = folded.len();
+        Ok(())
+    })
+}
+
 /// Checks a query's triangle index and numbers (the library checks the range
 /// of (v, w)), so each failure gets its own status code.
 pub(crate) fn query(surface: &Surface, tri: i32, v: f64, w: f64) -> Result<usize, Fail> {
