@@ -600,7 +600,10 @@ impl<'a> Remeshing<'a> {
     pub fn flip_for_angles(&mut self) -> usize {
         // A worklist: every edge once, then the outer sides of each flipped
         // pair, which are the only edges whose criterion the flip changed.
-        let mut work: Vec<u32> = (0..self.mesh.num_half_edges()).rev().collect();
+        let mut work: Vec<u32> = (0..self.mesh.num_half_edges())
+            .rev()
+            .filter(|&h| self.inner_unlabelled(h))
+            .collect();
         let mut done = 0;
         let budget = 8 * work.len();
         let mut visited = 0;
