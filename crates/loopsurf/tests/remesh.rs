@@ -294,6 +294,39 @@ fn quality_beats_cgal_at_the_same_size() {
     }
 }
 
+/// `net` adapted at the default tolerance 1e-3, with its surface: the
+/// chord error within the tolerance, as bounded by the remesher and as
+/// measured by certified snap (never above the bound).
+fn adapted(name: &str, net: &ControlNet) -> (Surface, SurfaceMesh) {
+    let surface = Surface::new(net).unwrap();
+    let tol = 1e-3;
+    let mesh = Remesher::new(&surface)
+        .adapt_curvature(true)
+        .tolerance(tol)
+        .run()
+        .unwrap();
+    let diagonal = net.bbox_diagonal();
+    let bound = mesh.deviation.unwrap() / diagonal;
+    let snapped = mesh.snap_deviation(&surface).unwrap() / diagonal;
+    let q = mesh.quality();
+    println!(
+        "{name}: {} triangles, deviation {bound:.3e} (bound) {snapped:.3e} (snap), min {:.2}°, mean-min {:.2}°, below 20° {:.3}%",
+        mesh.triangles.len(),
+        q.min_angle,
+        q.mean_min_angle,
+        100.0 * q.below_20
+    );
+    assert!(
+        bound <= tol && snapped <= tol,
+        "{name}: {bound:e} / {snapped:e} over {tol}"
+    );
+    assert!(
+        snapped <= bound * (1.0 + 1e-9),
+        "{name}: the bound is below the snap"
+    );
+    (surface, mesh)
+}
+
 #[test]
 fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
     let mut nets = vec![("viking", example("viking", Some(30.0)))];
@@ -303,32 +336,8 @@ fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
     }
     nets.extend(cgal("pig.off", 40.0).map(|n| ("pig (40°)", n)));
     for (name, net) in nets {
-        let surface = Surface::new(&net).unwrap();
-        let tol = 1e-3;
-        let mesh = Remesher::new(&surface)
-            .adapt_curvature(true)
-            .tolerance(tol)
-            .run()
-            .unwrap();
-        let diagonal = net.bbox_diagonal();
-        let bound = mesh.deviation.unwrap() / diagonal;
-        let snapped = mesh.snap_deviation(&surface).unwrap() / diagonal;
+        let (surface, mesh) = adapted(name, &net);
         let q = mesh.quality();
-        println!(
-            "{name}: {} triangles, deviation {bound:.3e} (bound) {snapped:.3e} (snap), min {:.2}°, mean-min {:.2}°, below 20° {:.3}%",
-            mesh.triangles.len(),
-            q.min_angle,
-            q.mean_min_angle,
-            100.0 * q.below_20
-        );
-        assert!(
-            bound <= tol && snapped <= tol,
-            "{name}: {bound:e} / {snapped:e} over {tol}"
-        );
-        assert!(
-            snapped <= bound * (1.0 + 1e-9),
-            "{name}: the bound is below the snap"
-        );
         check_invariants(name, &surface, &mesh);
         assert!(
             q.mean_min_angle >= 50.0,
@@ -537,24 +546,8 @@ fn high_valence_fans_do_not_run_away() {
     let Some(net) = cgal("anchor.off", 40.0) else {
         return;
     };
-    let surface = Surface::new(&net).unwrap();
-    let tol = 1e-3;
-    let mesh = Remesher::new(&surface)
-        .adapt_curvature(true)
-        .tolerance(tol)
-        .run()
-        .unwrap();
-    let diagonal = net.bbox_diagonal();
-    let snapped = mesh.snap_deviation(&surface).unwrap() / diagonal;
+    let (surface, mesh) = adapted("anchor", &net);
     let q = mesh.quality();
-    println!(
-        "anchor: {} triangles, deviation {snapped:.3e} (snap), min {:.2}°, mean-min {:.2}°, below 20° {:.3}%",
-        mesh.triangles.len(),
-        q.min_angle,
-        q.mean_min_angle,
-        100.0 * q.below_20
-    );
-    assert!(snapped <= tol, "anchor: {snapped:e} over {tol}");
     assert!(
         mesh.triangles.len() <= 25_000,
         "anchor: {} triangles",
