@@ -14,6 +14,9 @@
 //! chart lattice of right triangles is otherwise a fixed point of all four
 //! passes.
 //!
+//! After each round's collapses the mesh is renumbered along a Z-order
+//! curve through its vertices, so that the passes' walks stay in cache.
+//!
 //! Every vertex carries its parameters (tri, v, w) and is exactly the
 //! surface there ([`vertices`]); corners never move, crease and boundary
 //! vertices move along their exact curve, and the chains of output edges
