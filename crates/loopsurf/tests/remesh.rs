@@ -185,11 +185,12 @@ fn check_invariants(name: &str, surface: &Surface, mesh: &SurfaceMesh) {
 ///
 /// Where the control net folds back onto itself (pig's triangles 534 and
 /// 535 meet at 178.8°), or the surface does (anchor's flat fans), two
-/// sheets of the surface pass within 1e-6 of each other, and the closest point may lie on the sheet the triangle does not
-/// approximate. There the triangle must face as its own sheet does: at the
-/// local minimum of the distance found from its vertices' parameters,
-/// nearer than 1% of its longest side, with the two sheets' normals
-/// opposed. Such triangles are counted and printed.
+/// sheets of the surface pass within 1e-6 of each other, and the closest
+/// point may lie on the sheet the triangle does not approximate. There
+/// the triangle must face as its own sheet does: at the local minimum of
+/// the distance found from its vertices' parameters, nearer than 1% of
+/// its longest side, with the two sheets' normals opposed. Such triangles
+/// are counted and printed.
 fn check_orientation_and_faces(name: &str, surface: &Surface, mesh: &SurfaceMesh, step: usize) {
     let against = facing_against(name, surface, mesh, step);
     assert!(
