@@ -364,8 +364,8 @@ fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
         let rest = without(&mesh, &folds);
         let against = facing_against(name, &surface, &rest, 1);
         let q = rest.quality();
-        let unforced =
-            (q.below_20 * rest.triangles.len() as f64).round() as usize - q.below_20_at_features;
+        let unforced = ((q.below_20 * rest.triangles.len() as f64).round() as usize)
+            .saturating_sub(q.below_20_at_features);
         println!(
             "{name}: {} triangles next to the fold left out; on the rest {} below 20° not forced by a feature (min {:.2}°), {} facing against the surface",
             mesh.triangles.len() - rest.triangles.len(),
