@@ -108,6 +108,16 @@ module loopsurf
             integer(c_size_t), intent(out) :: n
             type(c_ptr), intent(out) :: pairs
         end function
+        ! Folded edges (worst first): vertex pairs and triangle pairs (int32,
+        ! 0-based, 2 per fold) and turns in degrees, freed with ls_free_array.
+        integer(c_int) function ls_net_folds(net, degrees, n, edges, triangles, turns) &
+                bind(C, name="ls_net_folds")
+            import :: c_int, c_double, c_size_t, c_ptr
+            type(c_ptr), value :: net
+            real(c_double), value :: degrees
+            integer(c_size_t), intent(out) :: n
+            type(c_ptr), intent(out) :: edges, triangles, turns
+        end function
         subroutine ls_net_free(net) bind(C, name="ls_net_free")
             import :: c_ptr
             type(c_ptr), value :: net

@@ -159,9 +159,13 @@ program test_loopsurf
         == LS_ERR_INVALID_ARGUMENT, "adapt levels 11")
     call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
     call ls_free_array(rxyz)
-    ! The octahedron's surface does not fold.
+    ! The octahedron's surface does not fold, nor does its net.
     call check(ls_surface_folded_patches(surf, n, rxyz) == LS_OK .and. n == 0, "folded patches")
     call ls_free_array(rxyz)
+    call check(ls_net_folds(net, 150d0, n, rxyz, rtris, mvw) == LS_OK .and. n == 0, "net folds")
+    call ls_free_array(rxyz)
+    call ls_free_array(rtris)
+    call ls_free_array(mvw)
 
     ! A surface point snaps to itself; the triangle comes back 1-based.
     call check(loopsurf_evaluate(surf, 4, 0.2d0, 0.3d0, r) == LS_OK, "eval for snap")

@@ -533,6 +533,20 @@ int ls_net_counts(const ls_net *net, size_t *nverts, size_t *ntris, size_t *nhar
 // indices i < j in a new array of 2 × n, released with `ls_free_array`.
 int ls_net_hard_edges(const ls_net *net, size_t *n, int32_t **pairs);
 
+// The edges where the net folds back on itself: the normals of their two
+// triangles turn by more than `degrees` (0 to 180; 150 finds pig.off's
+// needle, folded back at 178.8°). Their limit surface has a fin there,
+// and no mesh of it is good. `n` folds, worst first, in new arrays
+// (allocated even when n = 0) released with `ls_free_array`: `edges` the
+// vertex pairs i < j (2 × n), `triangles` the two triangles of each
+// (2 × n), `turns` the angles in degrees (n).
+int ls_net_folds(const ls_net *net,
+                 double degrees,
+                 size_t *n,
+                 int32_t **edges,
+                 int32_t **triangles,
+                 double **turns);
+
 // Frees a net (NULL is ignored). Surfaces built from it stay valid.
 void ls_net_free(ls_net *net);
 

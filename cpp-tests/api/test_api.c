@@ -203,6 +203,19 @@ static void test_nets(const char* data_dir) {
     EXPECT(ls_net_load(path, &net), LS_OK);
     EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
     CHECK(nv == 468 && nt == 891 && nh == 55); /* its 7 boundary loops are hard */
+    /* Its net folds back at one edge: the needle 534 against 535. */
+    size_t nfolds = 99;
+    int32_t *fold_edges = NULL, *fold_tris = NULL;
+    double* turns = NULL;
+    EXPECT(ls_net_folds(NULL, 150, &nfolds, &fold_edges, &fold_tris, &turns), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_folds(net, 150, &nfolds, &fold_edges, NULL, &turns), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_folds(net, 181, &nfolds, &fold_edges, &fold_tris, &turns), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_net_folds(net, 150, &nfolds, &fold_edges, &fold_tris, &turns), LS_OK);
+    CHECK(nfolds == 1 && fold_edges[0] == 332 && fold_edges[1] == 343);
+    CHECK(fold_tris[0] + fold_tris[1] == 534 + 535 && turns[0] > 178.7 && turns[0] < 178.9);
+    ls_free_array(fold_edges);
+    ls_free_array(fold_tris);
+    ls_free_array(turns);
     /* Its limit surface folds over itself in two patches (tests/folds.rs
        checks them against the refined net). */
     ls_surface* surface = NULL;

@@ -281,6 +281,58 @@ pub unsafe extern "C" fn ls_net_hard_edges(
     })
 }
 
+/// The edges where the net folds back on itself: the normals of their two
+/// triangles turn by more than `degrees` (0 to 180; 150 finds pig.off's
+/// needle, folded back at 178.8°). Their limit surface has a fin there,
+/// and no mesh of it is good. `n` folds, worst first, in new arrays
+/// (allocated even when n = 0) released with `ls_free_array`: `edges` the
+/// vertex pairs i < j (2 × n), `triangles` the two triangles of each
+/// (2 × n), `turns` the angles in degrees (n).
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_folds(
+    net: *const ls_net,
+    degrees: f64,
+    n: *mut usize,
+    edges: *mut *mut i32,
+    triangles: *mut *mut i32,
+    turns: *mut *mut f64,
+) -> c_int {
+    run("ls_net_folds", || {
+        let net = &input(net, "net")?.0;
+        let n = output(n, "n")?;
+        let (edges, triangles) = (output(edges, "edges")?, output(triangles, "triangles")?);
+        let turns = output(turns, "turns")?;
+        if !(0.0..=180.0).contains(&degrees) {
+            return Err(Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("degrees {degrees}: must be between 0 and 180"),
+            ));
+        }
+        let folds = net.folds(degrees);
+        let pairs: Vec<i32> = folds
+            .iter()
+            .flat_map(|f| f.edge)
+            .map(|i| i as i32)
+            .collect();
+        let tris: Vec<i32> = folds
+            .iter()
+            .flat_map(|f| f.triangles)
+            .map(|t| t as i32)
+            .collect();
+        let angles: Vec<f64> = folds.iter().map(|f| f.degrees).collect();
+        let mut blocks = crate::buffers::Blocks::default();
+        let arrays = (
+            blocks.copy(&pairs)?,
+            blocks.copy(&tris)?,
+            blocks.copy(&angles)?,
+        );
+        blocks.hand_over();
+        (*edges, *triangles, *turns) = arrays;
+        *n = folds.len();
+        Ok(())
+    })
+}
+
 /// Frees a net (NULL is ignored). Surfaces built from it stay valid.
 #[no_mangle]
 pub unsafe extern "C" fn ls_net_free(net: *mut ls_net) {
