@@ -69,7 +69,7 @@ impl Surface {
     /// vertices of high valence: hole.off's faces beside its rim at 40°
     /// (the normal turns from −x to +x within 0.1 of the crease),
     /// anchor.off's flat fans around valence 34 and 22 (the normal flips
-    /// ±y within 1e-7 of the plane), pig.off next to its folded needle;
+    /// ±y within 4e-7 of its plane), pig.off next to its folded needle;
     /// none on the Viking, fandisk or CAD cubes. Every patch is evaluated,
     /// 153 times: on large nets, ask [`Surface::is_folded`] where a mesh
     /// shows trouble.

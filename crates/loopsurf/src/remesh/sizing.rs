@@ -35,8 +35,8 @@ const CHORD_FACTOR: f64 = 6.0 * 9.0 / 16.0;
 /// own curvature may make its size at most this factor smaller than its
 /// control triangle's. There the curvature says nothing of the chord
 /// error: in anchor.off's flat fans around vertices of valence 34, 22 and
-/// 20 the surface wrinkles by 1e-7 of the diagonal, its normal flipping,
-/// with curvatures up to 300 times the diagonal's inverse. Unbounded, the
+/// 20 the surface wrinkles within 4e-7 of its plane, its normal flipping,
+/// with curvatures of 300 (model units; the diagonal is 1.46). Unbounded, the
 /// sizes ran away towards those vertices (42 434 triangles, 19% of them
 /// below 20°, in 9.6 s); bounded on its folded patches, 18 470 triangles,
 /// 1.4%, within the tolerance. Elsewhere the curvature at a vertex is
