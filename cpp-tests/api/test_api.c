@@ -937,6 +937,9 @@ static void test_remesh(const char* data_dir) {
     }
     /* No density at all. */
     EXPECT(ls_remesh(surface, 0, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_INVALID_ARGUMENT);
+    /* Over the budget of 20 million triangles: refused before meshing, with the count. */
+    EXPECT(ls_remesh(surface, 1e-4, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "over the budget of 20000000") != NULL);
     EXPECT(ls_remesh(NULL, 0.3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_NULL_POINTER);
     EXPECT(ls_remesh(surface, 0.3, 0, 0, 0, &nv, &xyz, NULL, &tris, &vtri, &vw, &face, &dev), LS_ERR_NULL_POINTER);
     CHECK(strstr(ls_last_error(), "ntris") != NULL);

@@ -134,6 +134,10 @@ pub unsafe extern "C" fn ls_mesh(
 /// several control triangles. Release every array with `ls_free_array`;
 /// nothing is written on failure.
 ///
+/// Budget: a density asking for more than 20 million triangles (about
+/// 8 GB while remeshing) fails with `LS_ERR_INVALID_ARGUMENT`, and
+/// `ls_last_error` says how many it asked for, before the memory is spent.
+///
 /// Hard edges: `ls_mesh_hard_edges` on this mesh gives its edges along the
 /// curves, with their curves and parameters, from `vertex_tri`,
 /// `vertex_vw` and `tris` alone.

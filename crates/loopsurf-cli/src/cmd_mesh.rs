@@ -47,6 +47,11 @@ pub struct Args {
     /// default when neither --size nor --tolerance is given.
     #[arg(long, value_enum, value_name = "HOW")]
     adapt: Option<Adapt>,
+    /// The most output triangles: a density asking for more stops with an
+    /// error saying how many, before the memory is spent (default: 20
+    /// million for the remesher, about 8 GB; 200 million for --charts).
+    #[arg(long, value_name = "N")]
+    max_triangles: Option<usize>,
     /// Skip the max–min angle edge swaps (--charts).
     #[arg(long)]
     no_swaps: bool,
@@ -93,6 +98,9 @@ pub fn run(args: Args) -> Result<(), Error> {
         }
         if let Some(eps) = args.tolerance {
             remesher = remesher.tolerance(eps);
+        }
+        if let Some(n) = args.max_triangles {
+            remesher = remesher.max_triangles(n);
         }
         let spinner = ProgressBar::new_spinner().with_message("remeshing");
         spinner.enable_steady_tick(std::time::Duration::from_millis(200));
@@ -198,6 +206,9 @@ fn chart_mesh(args: &Args, surface: &loopsurf::Surface) -> Result<SurfaceMesh, E
         .swaps(!args.no_swaps);
     if let Some(eps) = args.tolerance {
         mesher = mesher.tolerance(eps);
+    }
+    if let Some(n) = args.max_triangles {
+        mesher = mesher.max_triangles(n);
     }
     let bar = ProgressBar::new(surface.net().triangles().len() as u64).with_style(
         ProgressStyle::with_template("meshing {bar:40} {pos}/{len} control triangles")

@@ -135,6 +135,12 @@ fn bad_input_exits_2_with_one_line() {
         "levels",
     );
     assert_clean_failure(&loopsurf(&["info"]), "MESH");
+    for charts in [&[][..], &["--charts"][..]] {
+        let mut args = vec!["mesh", "--example", "cube", "--size", "0.01"];
+        args.extend(["--max-triangles", "1000", "-o", "x.obj"]);
+        args.extend(charts);
+        assert_clean_failure(&loopsurf(&args), "over the");
+    }
     assert_clean_failure(&loopsurf(&["frobnicate"]), "frobnicate");
     let tags = scratch("tags_bad.txt");
     let with_tags = |content: &str| {

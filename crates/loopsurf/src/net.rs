@@ -255,6 +255,19 @@ impl ControlNet {
         (hi - lo).length()
     }
 
+    /// The total area of the control triangles: the limit surface's area
+    /// to within the shrinking of subdivision, enough to tell how many
+    /// triangles a size asks for before meshing.
+    pub fn area(&self) -> f64 {
+        self.triangles()
+            .iter()
+            .map(|c| {
+                let p = c.map(|i| self.points[i as usize]);
+                0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
+            })
+            .sum()
+    }
+
     /// Where every control vertex lands on the limit surface (its limit mask).
     pub fn limit_points(&self) -> Vec<DVec3> {
         limit_positions(&self.topo, &self.features, &self.points)

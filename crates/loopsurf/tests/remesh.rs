@@ -394,7 +394,95 @@ fn bad_options_are_refused_by_name() {
     assert!(message(Remesher::new(&surface).size(f64::NAN).run()).contains("size NaN"));
     assert!(message(Remesher::new(&surface).size(1.0).gradation(0.9).run()).contains("gradation"));
     assert!(message(Remesher::new(&surface).tolerance(2.0).run()).contains("tolerance 2"));
-    assert!(message(Remesher::new(&surface).size(1e-9).run()).contains("too many"));
+    assert!(message(Remesher::new(&surface).size(1e-9).run()).contains("over the budget"));
+    assert!(
+        message(Remesher::new(&surface).size(1.0).max_triangles(0).run())
+            .contains("max_triangles 0")
+    );
+}
+
+/// The triangle budget stops a density before its memory is spent, and
+/// says how many triangles were asked for: for a uniform size from the
+/// net's area before any meshing, for curvature sizes from the size
+/// field on the mesh as it is, before each round's splits.
+#[test]
+fn densities_over_the_budget_fail_with_the_count() {
+    let net = example("cube", None);
+    let surface = Surface::new(&net).unwrap();
+    let uniform = Remesher::new(&surface)
+        .size(0.025)
+        .max_triangles(1_000)
+        .run();
+    let message = uniform.unwrap_err().to_string();
+    assert!(message.contains("budget of 1000"), "{message}");
+    // The unit cube's net has area 6 (its limit surface a bit less): at
+    // h = 0.025 it asks for about 6 / (√3/4 · 0.025²) = 22 170 triangles.
+    assert!(message.contains("2.217e4"), "{message}");
+    let fits = Remesher::new(&surface).size(0.5).max_triangles(1_000).run();
+    assert!(fits.unwrap().triangles.len() <= 1_000);
+    // None only under LOOPSURF_SKIP_DATA.
+    let Some(fandisk) = cgal("fandisk.off", 30.0) else {
+        return;
+    };
+    let surface = Surface::new(&fandisk).unwrap();
+    // At 1e-4 it makes 36 694 triangles (the gradation test): its start
+    // (32 365) fits in 4 × 10 000, its sizes do not fit in 10 000.
+    let adapted = |max| {
+        Remesher::new(&surface)
+            .tolerance(1e-4)
+            .max_triangles(max)
+            .run()
+            .unwrap_err()
+            .to_string()
+    };
+    let message = adapted(10_000);
+    assert!(message.contains("over the budget of 10000"), "{message}");
+    let asked: f64 = message
+        .strip_prefix("the requested density needs about ")
+        .and_then(|m| m.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no count in: {message}"));
+    assert!((10_000.0..40_000.0).contains(&asked), "{message}");
+    // Nor does the start fit in 4 × 5 000: that is said too.
+    let message = adapted(5_000);
+    assert!(
+        message.contains("starts from (allowed 4 × the budget of 5000"),
+        "{message}"
+    );
+}
+
+/// mpi.off (its triangulation): at 40° its crease chains turn back on
+/// themselves at chain vertices, where the limit curve stops dead (a
+/// cusp, curvature 1.4e6 per unit at vertex 39), and 41 of its 180
+/// patches fold. The cusp's curvature once set the size of whole flat
+/// control triangles to the floor (8.6 million triangles asked for, the
+/// splits past 40 million and 4 GB), and then the tolerance rounds shrank
+/// the triangles whose chord error no size helps, again and again (from
+/// 75 thousand triangles to over 20 million). Now it meshes, and says
+/// how far it missed.
+#[test]
+fn cusps_and_stuck_misses_do_not_run_away() {
+    // None only under LOOPSURF_SKIP_DATA.
+    let Some(net) = cgal("mpi_triang.off", 40.0) else {
+        return;
+    };
+    let surface = Surface::new(&net).unwrap();
+    let mesh = Remesher::new(&surface)
+        .adapt_curvature(true)
+        .tolerance(1e-3)
+        .run()
+        .unwrap();
+    let deviation = mesh.deviation.unwrap() / net.bbox_diagonal();
+    println!(
+        "mpi_triang: {} triangles, deviation {deviation:.3e}",
+        mesh.triangles.len()
+    );
+    assert!(
+        mesh.triangles.len() <= 400_000,
+        "mpi_triang: {} triangles",
+        mesh.triangles.len()
+    );
+    assert!(deviation.is_finite() && deviation < 0.05, "{deviation}");
 }
 
 /// A size with a tolerance (no `adapt_curvature`): sizes follow curvature

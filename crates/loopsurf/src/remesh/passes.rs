@@ -17,6 +17,7 @@ use crate::geometry::max_cosine;
 use crate::topology::NONE;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::collections::HashSet;
 
 /// Edges longer than this times their target are split…
 pub(crate) const SPLIT_ABOVE: f64 = 4.0 / 3.0;
@@ -253,16 +254,48 @@ impl<'a> Remeshing<'a> {
             .or_else(|| self.placer.between_in(va, vb, face))
     }
 
+    /// The number of triangles the sizes ask for: each live triangle's
+    /// area over that of an equilateral triangle of its corners' mean
+    /// size. Cheap, and known before the splits that would build them.
+    pub fn expected_triangles(&self) -> f64 {
+        (0..self.mesh.num_half_edges() / 3)
+            .into_par_iter()
+            .map(|t| 3 * t)
+            .filter(|&h| self.mesh.is_alive(h))
+            .map(|h| {
+                let c = self.mesh.corners(h);
+                let p = c.map(|v| self.vertices[v as usize].x);
+                let s = c.iter().map(|&v| self.size[v as usize]).sum::<f64>() / 3.0;
+                let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
+                area / (0.25 * 3f64.sqrt() * s * s)
+            })
+            .sum()
+    }
+
     /// Splits every edge longer than [`SPLIT_ABOVE`] × its target, again
-    /// and again until none is (or none can be). Returns the count.
-    pub fn split_long(&mut self) -> usize {
+    /// and again until none is (or none can be), or until the mesh holds
+    /// more than `limit` triangle slots (a bound on memory, checked
+    /// after each sweep). Returns the count.
+    ///
+    /// An edge whose split was refused is tried again only once a
+    /// triangle on it has changed (its opposite corners): on a surface
+    /// that folds, refused splits are the many (mpi.off at 40°: some
+    /// 5 000 in every sweep, a handful done, and each sweep placed every
+    /// midpoint again), and with its triangles the same a split is refused
+    /// the same way.
+    pub fn split_long(&mut self, limit: usize) -> usize {
         let mut total = 0;
+        let mut refused: HashSet<[u32; 4]> = HashSet::new();
         for _ in 0..32 {
+            if self.mesh.num_half_edges() as usize / 3 > limit {
+                break;
+            }
             let long: Vec<(u32, u32)> = self
                 .edges()
                 .filter(|&h| {
                     let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
                     self.length(h) > SPLIT_ABOVE * self.target(a, b)
+                        && !refused.contains(&self.edge_key(h))
                 })
                 .map(|h| (self.mesh.origin(h), self.mesh.dest(h)))
                 .collect();
@@ -272,7 +305,11 @@ impl<'a> Remeshing<'a> {
                 .collect();
             let mut done = 0;
             for (&(a, b), m) in long.iter().zip(placed) {
-                let (Some(m), Some(h)) = (m, self.mesh.find(a, b)) else {
+                let Some(h) = self.mesh.find(a, b) else {
+                    continue;
+                };
+                let Some(m) = m else {
+                    refused.insert(self.edge_key(h));
                     continue;
                 };
                 // The projected midpoint may lie on the other sheet of a
@@ -295,6 +332,8 @@ impl<'a> Remeshing<'a> {
                     self.size.push(self.target(a, b));
                     self.mesh.split(h, id);
                     done += 1;
+                } else {
+                    refused.insert(self.edge_key(h));
                 }
             }
             total += done;
@@ -303,6 +342,24 @@ impl<'a> Remeshing<'a> {
             }
         }
         total
+    }
+
+    /// An edge with the corners opposite it: the same key, the same two
+    /// triangles on the edge.
+    fn edge_key(&self, h: u32) -> [u32; 4] {
+        let o = self.mesh.opposite(h);
+        let (h, o) = if o != NONE && o < h { (o, h) } else { (h, o) };
+        let across = if o == NONE {
+            NONE
+        } else {
+            self.mesh.origin(prev(o))
+        };
+        [
+            self.mesh.origin(h),
+            self.mesh.dest(h),
+            self.mesh.origin(prev(h)),
+            across,
+        ]
     }
 
     /// Whether the four (or two) triangles of splitting h at m may replace
