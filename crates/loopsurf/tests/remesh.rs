@@ -416,8 +416,9 @@ fn densities_over_the_budget_fail_with_the_count() {
     let message = uniform.unwrap_err().to_string();
     assert!(message.contains("budget of 1000"), "{message}");
     // The unit cube's net has area 6 (its limit surface a bit less): at
-    // h = 0.025 it asks for about 6 / (√3/4 · 0.025²) = 22 170 triangles.
-    assert!(message.contains("2.217e4"), "{message}");
+    // h = 0.025 (aimed at 1.07 h, with 1.2 for edges coming out shorter
+    // than aimed) it asks for about 1.2 · 6 / (√3/4 · 0.02675²) = 23 240.
+    assert!(message.contains("2.324e4"), "{message}");
     let fits = Remesher::new(&surface).size(0.5).max_triangles(1_000).run();
     assert!(fits.unwrap().triangles.len() <= 1_000);
     // None only under LOOPSURF_SKIP_DATA.
@@ -425,8 +426,9 @@ fn densities_over_the_budget_fail_with_the_count() {
         return;
     };
     let surface = Surface::new(&fandisk).unwrap();
-    // At 1e-4 it makes 36 694 triangles (the gradation test): its start
-    // (32 365) fits in 4 × 10 000, its sizes do not fit in 10 000.
+    // At 1e-4 it makes about 42 000 triangles (the gradation test): its
+    // start (the chart mesher's 32 365) fits in 4 × 10 000, its sizes do
+    // not fit in 10 000.
     let adapted = |max| {
         Remesher::new(&surface)
             .tolerance(1e-4)
@@ -442,7 +444,7 @@ fn densities_over_the_budget_fail_with_the_count() {
         .and_then(|m| m.split(' ').next())
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no count in: {message}"));
-    assert!((10_000.0..40_000.0).contains(&asked), "{message}");
+    assert!((10_000.0..60_000.0).contains(&asked), "{message}");
     // Nor does the start fit in 4 × 5 000: that is said too.
     let message = adapted(5_000);
     assert!(
@@ -627,8 +629,11 @@ fn gradation_bounds_how_fast_sizes_change() {
 /// folds over itself with huge curvature and a tiny chord error. Sized by
 /// the curvature at each vertex alone, sizes ran away towards them
 /// (42 434 triangles, 19% below 20°); the chord tolerance is met with far
-/// fewer, and mostly good, triangles (1.4% below 20°: the patches beside
-/// the folded ones still refine by their own curvature).
+/// fewer, and mostly good, triangles (0.23% below 20°, mean-min 49.9°,
+/// since triangles with a corner on a crease are also checked at their
+/// centroid; 1.4–2.1% and 48.7–49.1° before). On the folds every change
+/// elsewhere moves those figures (variants of the split placement tried
+/// on 2026-11-29 gave 1.5–2.8%, one 18%): the bounds catch a runaway.
 #[test]
 fn high_valence_fans_do_not_run_away() {
     // None only under LOOPSURF_SKIP_DATA.
