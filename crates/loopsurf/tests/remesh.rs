@@ -453,15 +453,16 @@ fn densities_over_the_budget_fail_with_the_count() {
     );
 }
 
-/// mpi.off (its triangulation): at 40° its crease chains turn back on
-/// themselves at chain vertices, where the limit curve stops dead (a
-/// cusp, curvature 1.4e6 per unit at vertex 39), and 41 of its 180
-/// patches fold. The cusp's curvature once set the size of whole flat
-/// control triangles to the floor (8.6 million triangles asked for, the
-/// splits past 40 million and 4 GB), and then the tolerance rounds shrank
-/// the triangles whose chord error no size helps, again and again (from
-/// 75 thousand triangles to over 20 million). Now it meshes, and says
-/// how far it missed.
+/// mpi.off and its triangulation mpi_triang.off (tested here): at 40°
+/// their crease chains turn back on themselves at chain vertices, where
+/// the limit curve stops dead (a cusp: in mpi.off, triangulated by
+/// `--repair`, curvature 1.4e6 per unit at vertex 39), and many patches
+/// fold (41 of mpi.off's). The cusp's curvature once set the size of whole
+/// flat control triangles to the floor (on mpi.off 8.6 million triangles
+/// asked for, the splits past 40 million and 4 GB), and then the
+/// tolerance rounds shrank the triangles whose chord error no size helps,
+/// again and again (the sizes asking for 29 million). Now it meshes, and
+/// says how far it missed.
 #[test]
 fn cusps_and_stuck_misses_do_not_run_away() {
     // None only under LOOPSURF_SKIP_DATA.
