@@ -105,6 +105,23 @@ pub enum Error {
     /// A caller-supplied argument that makes no sense (unknown edge, bad level count, ...).
     #[error("{0}")]
     InvalidArgument(String),
+    /// A request whose output would pass its triangle budget, refused
+    /// before the memory is spent: `needed` is the estimate, `limit` the
+    /// budget, and the message says what to loosen.
+    #[error("{message}")]
+    OverBudget {
+        needed: f64,
+        limit: usize,
+        message: String,
+    },
+    /// An error met while doing a larger task, which `context` names; its
+    /// kind is the source's ([`Error::root`] strips this wrapper).
+    #[error("{context}: {source}")]
+    During {
+        context: String,
+        #[source]
+        source: Box<Error>,
+    },
     /// An error found in a file: names the file and, where known, the line.
     #[error("{}{}: {source}", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
     InFile {
@@ -116,10 +133,11 @@ pub enum Error {
 }
 
 impl Error {
-    /// The error with any [`Error::InFile`] wrappers removed: the kind of problem.
+    /// The error with any [`Error::InFile`] and [`Error::During`] wrappers
+    /// removed: the kind of problem.
     pub fn root(&self) -> &Error {
         match self {
-            Error::InFile { source, .. } => source.root(),
+            Error::InFile { source, .. } | Error::During { source, .. } => source.root(),
             other => other,
         }
     }
@@ -134,6 +152,15 @@ impl Error {
                 line,
                 source: Box::new(other),
             },
+        }
+    }
+
+    /// The same error, said to have happened while doing `context`; its
+    /// kind stays the same.
+    pub fn during(self, context: impl Into<String>) -> Error {
+        Error::During {
+            context: context.into(),
+            source: Box::new(self),
         }
     }
 

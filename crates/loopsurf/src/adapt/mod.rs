@@ -240,11 +240,15 @@ impl<'a> Adapter<'a> {
         for _ in 0..self.levels {
             let current = level.net.triangles().len();
             if 4 * current > self.max_triangles {
-                return Err(Error::InvalidArgument(format!(
-                    "the next level could reach {} triangles, over the limit of {}",
-                    4 * current,
-                    self.max_triangles
-                )));
+                return Err(Error::OverBudget {
+                    needed: (4 * current) as f64,
+                    limit: self.max_triangles,
+                    message: format!(
+                        "the next level could reach {} triangles, over the limit of {}",
+                        4 * current,
+                        self.max_triangles
+                    ),
+                });
             }
             let mut flat: Vec<bool> = match self.angle {
                 Some(a) => classify::conical_angles(&level.net, &level.charts, &level.dead, limit)?

@@ -421,10 +421,14 @@ impl<'a> Mesher<'a> {
             .sum::<u128>()
             + cuts.iter().map(|&n| n as u128).sum::<u128>();
         if estimate > self.max_triangles as u128 || estimate > i32::MAX as u128 {
-            return Err(Error::InvalidArgument(format!(
-                "the requested density needs about {estimate} triangles, over the limit of {}",
-                self.max_triangles.min(i32::MAX as usize)
-            )));
+            let limit = self.max_triangles.min(i32::MAX as usize);
+            return Err(Error::OverBudget {
+                needed: estimate as f64,
+                limit,
+                message: format!(
+                    "the requested density needs about {estimate} triangles, over the limit of {limit}"
+                ),
+            });
         }
         Ok(())
     }

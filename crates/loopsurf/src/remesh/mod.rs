@@ -174,10 +174,14 @@ impl<'a> Remesher<'a> {
 
     /// The error of a density over the budget.
     fn over_budget(&self, expected: f64) -> Error {
-        Error::InvalidArgument(format!(
-            "the requested density needs about {expected:.3e} triangles, over the budget of {}: loosen the tolerance, raise the size or raise the budget",
-            self.max_triangles
-        ))
+        Error::OverBudget {
+            needed: expected,
+            limit: self.max_triangles,
+            message: format!(
+                "the requested density needs about {expected:.3e} triangles, over the budget of {}: loosen the tolerance, raise the size or raise the budget",
+                self.max_triangles
+            ),
+        }
     }
 
     /// The size field and the tolerance in model units, checked.
@@ -255,8 +259,8 @@ impl<'a> Remesher<'a> {
             _ => plain.run(),
         }
         .map_err(|e| {
-            Error::InvalidArgument(format!(
-                "the chart mesh the remesher starts from (allowed {START_BUDGET} × the budget of {} triangles): {e}",
+            e.during(format!(
+                "the chart mesh the remesher starts from (allowed {START_BUDGET} × the budget of {} triangles)",
                 self.max_triangles
             ))
         })?;
@@ -285,11 +289,15 @@ impl<'a> Remesher<'a> {
                     (work.mesh.num_half_edges() as usize / 3).saturating_add(self.max_triangles);
                 work.split_long(limit);
                 if work.mesh.num_half_edges() as usize / 3 > limit {
-                    return Err(Error::InvalidArgument(format!(
-                        "the splits ran past {limit} triangles where the sizes ask for about {:.3e} (the surface may fold over itself): loosen the tolerance, raise the size or raise the budget of {}",
-                        work.expected_triangles(),
-                        self.max_triangles
-                    )));
+                    return Err(Error::OverBudget {
+                        needed: work.expected_triangles(),
+                        limit: self.max_triangles,
+                        message: format!(
+                            "the splits ran past {limit} triangles where the sizes ask for about {:.3e} (the surface may fold over itself): loosen the tolerance, raise the size or raise the budget of {}",
+                            work.expected_triangles(),
+                            self.max_triangles
+                        ),
+                    });
                 }
                 work.collapse_short();
                 work.renumber();
