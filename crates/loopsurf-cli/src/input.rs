@@ -1,7 +1,7 @@
 //! The mesh argument every command shares: a file or a built-in example,
 //! plus the hard-feature flags.
 
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
 use loopsurf::{examples, ControlNet, Error, Surface, SurfaceMode};
 use std::path::{Path, PathBuf};
 

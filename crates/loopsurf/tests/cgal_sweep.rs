@@ -6,7 +6,7 @@
 
 mod common;
 
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
 use loopsurf::{ControlNet, Error, Surface};
 use std::collections::BTreeMap;
 use std::path::Path;

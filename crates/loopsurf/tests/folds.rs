@@ -6,7 +6,7 @@
 mod common;
 
 use common::{cgal_mesh, example};
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
 use loopsurf::{ControlNet, Surface};
 use std::collections::{BTreeSet, HashMap};
 

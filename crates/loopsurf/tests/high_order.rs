@@ -213,7 +213,7 @@ fn curving_a_mesh_made_elsewhere() {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("charts.off");
     io::write_mesh(&file, &mesh.points, &mesh.triangles).unwrap();
-    let read = io::read_off(&file, &io::ReadOptions::default()).unwrap();
+    let read = io::read_off(&file, &io::ParseOptions::default()).unwrap();
     let tris: Vec<[u32; 3]> = read.tris.iter().map(|t| t.map(|i| i as u32)).collect();
 
     let onto = onto_surface(&surface, &read.points, &tris, DEFAULT_MAX_MOVE).unwrap();
