@@ -308,7 +308,7 @@ pub unsafe extern "C" fn ls_net_folds(
                 format!("degrees {degrees}: must be between 0 and 180"),
             ));
         }
-        let folds = net.folds(degrees);
+        let folds = loopsurf::folds::folded_edges(net, degrees);
         let pairs: Vec<i32> = folds
             .iter()
             .flat_map(|f| f.edge)

@@ -139,7 +139,7 @@ impl Input {
 /// defined, but the fin it makes there spoils any mesh of it, and the user
 /// should know why before looking at one.
 fn warn_of_folds(net: &ControlNet, name: &str) {
-    let folds = net.folds(FOLD_DEGREES);
+    let folds = loopsurf::folds::folded_edges(net, FOLD_DEGREES);
     let Some(worst) = folds.first() else { return };
     let [a, b] = worst.edge;
     let [s, t] = worst.triangles;

@@ -82,7 +82,7 @@ fn lagrange_readers_replay_their_fuzz_inputs() {
 #[test]
 fn surface_streams_replay_their_fuzz_inputs() {
     replay("stream", |data| {
-        let _ = Surface::from_bytes(data);
+        let _ = loopsurf::stream::from_bytes(data);
     });
 }
 
