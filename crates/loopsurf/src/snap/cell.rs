@@ -10,6 +10,7 @@
 //! bulge, which is of the order of curvature × size² — so only the cells
 //! next to the nearest point survive the pruning.
 
+use crate::geometry::area_normal;
 use glam::{DVec2, DVec3};
 use std::ops::{Add, Mul, Sub};
 
@@ -131,9 +132,10 @@ impl CellBound {
 }
 
 /// The unit normal of a triangle, or a unit vector if it has none.
-fn flat_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+fn flat_normal(triangle: [DVec3; 3]) -> DVec3 {
+    let [a, b, c] = triangle;
     let (e1, e2) = (b - a, c - a);
-    e1.cross(e2)
+    area_normal(triangle)
         .try_normalize()
         .or_else(|| e1.any_orthonormal_vector().try_normalize())
         .or_else(|| e2.any_orthonormal_vector().try_normalize())
