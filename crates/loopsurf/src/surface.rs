@@ -7,6 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::eval::surface::{AtVertex, ChartEvaluator, Evaluator};
+use crate::eval::surface_normal;
 use crate::net::ControlNet;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -89,6 +90,15 @@ impl Evaluation {
         }
         let (r, s) = (self.xv.dot(d), self.xw.dot(d));
         Some(DVec2::new(c * r - b * s, a * s - b * r) / det)
+    }
+
+    /// The unit normal Xv × Xw / |Xv × Xw| (see `eval::surface_normal`):
+    /// outward on a consistently oriented closed net. `None` exactly at a
+    /// special vertex, whose derivatives are reported as zero
+    /// ([`Surface::normal`] gives the normal there from the tangent masks),
+    /// and where Xv and Xw are parallel.
+    pub fn normal(&self) -> Option<DVec3> {
+        surface_normal(self.xv, self.xw)
     }
 
     /// X Xv Xw Xvv Xvw Xww as 18 numbers (EGADS `EG_evaluate` order).
@@ -361,10 +371,9 @@ impl Surface {
         let (v, w) = self.check(tri, v, w)?;
         match self.evaluator.eval(tri, v, w) {
             Ok(_) if !self.displacement.is_empty() => {
-                let e = self.eval(tri, v, w)?;
-                Ok(e.xv.cross(e.xw).normalize_or_zero())
+                Ok(self.eval(tri, v, w)?.normal().unwrap_or_default())
             }
-            Ok(d) => Ok(d[1].cross(d[2]).normalize_or_zero()),
+            Ok(d) => Ok(surface_normal(d[1], d[2]).unwrap_or_default()),
             Err(at) => self.vertex_normal(tri, v, w, at.vertex, at.normal),
         }
     }
@@ -390,7 +399,7 @@ impl Surface {
         let inside = |h: f64| -> Option<DVec3> {
             let (a, b) = (v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w));
             let d = self.evaluator.eval(tri, a, b).ok()?;
-            d[1].cross(d[2]).try_normalize()
+            surface_normal(d[1], d[2])
         };
         let none = Error::NoTangentPlane {
             vertex,
@@ -528,10 +537,10 @@ fn curvature_of(e: &Evaluation) -> Curvature {
     let det = ee * gg - ff * ff;
     // A degenerate or non-finite tangent plane (NaN counts as degenerate).
     let is_degenerate = det.is_nan() || det <= f64::EPSILON * ee * gg;
-    if e.at_special_vertex || is_degenerate {
-        return unreliable;
-    }
-    let n = e.xv.cross(e.xw).normalize();
+    let n = match e.normal() {
+        Some(n) if !e.at_special_vertex && !is_degenerate => n,
+        _ => return unreliable,
+    };
     // Sign: positive where the surface bends away from the outward normal.
     let (l, m, nn) = (-e.xvv.dot(n), -e.xvw.dot(n), -e.xww.dot(n));
     let gaussian = (l * nn - m * m) / det;

@@ -546,8 +546,7 @@ fn is_smooth_edge(surface: &Surface, tri: usize, k: usize) -> bool {
 /// millionth of a radian): nearly a stationary point of the distance,
 /// whatever the parametrisation does.
 fn is_stationary(e: &Evaluation, r: DVec3) -> bool {
-    let n = e.xv.cross(e.xw);
-    let Some(n) = n.try_normalize() else {
+    let Some(n) = e.normal() else {
         return true;
     };
     let tangential = r - r.dot(n) * n;
