@@ -7,6 +7,13 @@ use rayon::prelude::*;
 
 pub(crate) mod swap;
 
+/// An absent index: the missing triangle beside a boundary edge, a
+/// half-edge without a twin, a vertex no triangle uses. One value for the
+/// whole crate, defined in its lowest layer so that every layer can name
+/// it; no real index reaches it, since a net holds fewer than `u32::MAX`
+/// vertices and refinement refuses to make that many edges.
+pub const NONE: u32 = u32::MAX;
+
 /// The area-weighted normal of triangle (a, b, c): (b − a) × (c − a),
 /// whose length is twice the area. It points to the side from which the
 /// corners run counter-clockwise (the right-hand rule), so on a

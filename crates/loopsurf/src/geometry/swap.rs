@@ -8,10 +8,7 @@
 //! Each swap raises the sorted vector of all angles lexicographically, so
 //! the loop terminates; a cap guards against round-off.
 
-use super::{area_normal, max_cosine};
-
-/// No twin (a side on the strip's border).
-const NONE: u32 = u32::MAX;
+use super::{area_normal, max_cosine, NONE};
 use glam::{DVec2, DVec3};
 
 /// Minimum swaps an angle must gain (as a cosine) to count, against
