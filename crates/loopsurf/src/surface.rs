@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::eval::surface::{AtVertex, ChartEvaluator, Evaluator};
 use crate::eval::surface_normal;
 use crate::net::ControlNet;
+use crate::parameters::{clamp_to_triangle, CORNERS};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -319,10 +320,8 @@ impl Surface {
             return x;
         }
         let c = self.net.triangles()[tri].map(|i| i as usize);
-        for (k, corner) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
-            if (v, w) == corner {
-                return self.net.points()[c[k]];
-            }
+        if let Some(k) = corner_at(v, w) {
+            return self.net.points()[c[k]];
         }
         let d = c.map(|i| self.displacement[i]);
         x + ((1.0 - v - w) * d[0] + v * d[1] + w * d[2])
@@ -334,10 +333,8 @@ impl Surface {
         let c = self.net.triangles()[tri].map(|i| i as usize);
         let d = c.map(|i| self.displacement[i]);
         e.x += (1.0 - v - w) * d[0] + v * d[1] + w * d[2];
-        for (k, corner) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
-            if (v, w) == corner {
-                e.x = self.net.points()[c[k]];
-            }
+        if let Some(k) = corner_at(v, w) {
+            e.x = self.net.points()[c[k]];
         }
         if !e.at_special_vertex {
             e.xv += d[1] - d[0];
@@ -464,10 +461,13 @@ impl Surface {
         if v < -tol || w < -tol || v + w > 1.0 + tol {
             return bad("outside the triangle (v ≥ 0, w ≥ 0, v + w ≤ 1)");
         }
-        let (v, w) = (v.max(0.0), w.max(0.0));
-        let excess = (v + w - 1.0).max(0.0);
-        Ok(((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0)))
+        Ok(clamp_to_triangle(DVec2::new(v, w)).into())
     }
+}
+
+/// Which corner of its triangle (v, w) is exactly, if any.
+fn corner_at(v: f64, w: f64) -> Option<usize> {
+    CORNERS.iter().position(|&c| c == DVec2::new(v, w))
 }
 
 /// An evaluator result as an [`Evaluation`]: exactly at a special vertex,

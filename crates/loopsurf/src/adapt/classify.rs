@@ -294,7 +294,7 @@ pub(crate) fn next_dead(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec2;
+    use crate::parameters::CORNERS;
 
     fn example(name: &str) -> ControlNet {
         let ex = crate::examples::by_name(name).unwrap();
@@ -306,7 +306,7 @@ mod tests {
         (0..net.triangles().len() as u32)
             .map(|tri| FaceChart {
                 tri,
-                q: [DVec2::ZERO, DVec2::X, DVec2::Y],
+                q: CORNERS,
             })
             .collect()
     }

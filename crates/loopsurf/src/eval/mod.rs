@@ -22,6 +22,7 @@ use glam::DVec3;
 /// a consistently oriented closed net. `None` where the tangents are
 /// parallel, zero (the reported derivatives exactly at a special vertex)
 /// or not finite.
+#[inline]
 pub(crate) fn surface_normal(xv: DVec3, xw: DVec3) -> Option<DVec3> {
     xv.cross(xw).try_normalize()
 }
