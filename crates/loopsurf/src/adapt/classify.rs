@@ -304,10 +304,7 @@ mod tests {
     /// Level 0: every triangle its own control triangle.
     fn charts(net: &ControlNet) -> Vec<FaceChart> {
         (0..net.triangles().len() as u32)
-            .map(|tri| FaceChart {
-                tri,
-                q: CORNERS,
-            })
+            .map(|tri| FaceChart { tri, q: CORNERS })
             .collect()
     }
 

@@ -229,10 +229,7 @@ impl<'a> Adapter<'a> {
         let mut level = Level {
             net: net.clone(),
             charts: (0..net.triangles().len() as u32)
-                .map(|tri| FaceChart {
-                    tri,
-                    q: CORNERS,
-                })
+                .map(|tri| FaceChart { tri, q: CORNERS })
                 .collect(),
             dead: vec![false; net.points().len()],
         };

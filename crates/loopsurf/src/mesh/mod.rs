@@ -832,10 +832,8 @@ impl SurfaceMesh {
         let chart = self.charts[t];
         self.triangles[t].map(|i| {
             let p = self.params[i as usize];
-            parameters::reparameterize(net.topology(), p, chart).unwrap_or(SurfacePoint {
-                tri: chart,
-                ..p
-            })
+            parameters::reparameterize(net.topology(), p, chart)
+                .unwrap_or(SurfacePoint { tri: chart, ..p })
         })
     }
 
