@@ -25,11 +25,11 @@
 use crate::error::{Error, Result};
 use crate::features::VertexKind;
 use crate::model::{runs, Curve};
-use crate::refine::SurfacePoint;
+use crate::parameters::{vertex_point, SurfacePoint, CORNERS};
 use crate::snap::DEFAULT_TOLERANCE;
 use crate::surface::{Derived, Surface, SurfaceMode, PARAMETER_TOLERANCE};
-use crate::topology::{corner_of, NONE};
-use glam::{DVec2, DVec3};
+use crate::topology::NONE;
+use glam::DVec3;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::sync::OnceLock;
@@ -256,15 +256,10 @@ impl<'s> LimitCurve<'s> {
 
     /// The approximating surface's limit position of control vertex v.
     fn limit_of_vertex(&self, v: u32) -> DVec3 {
-        let topo = self.surface.net().topology();
-        let t = topo.fan(v as usize)[0];
-        let corner = corner_of(topo.triangles()[t as usize], v);
-        let (cv, cw) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][corner as usize];
         // The surface at a triangle corner is the vertex's exact limit.
-        self.surface
-            .eval(t as usize, cv, cw)
-            .map(|e| e.x)
-            .unwrap_or(DVec3::NAN)
+        vertex_point(self.surface.net().topology(), v)
+            .and_then(|p| self.surface.eval(p.tri as usize, p.v, p.w).ok())
+            .map_or(DVec3::NAN, |e| e.x)
     }
 
     /// Segment k at s ∈ (0, 1) from the surface on the curve's left (or
@@ -273,8 +268,7 @@ impl<'s> LimitCurve<'s> {
     /// by the caller).
     fn curve_on_surface(&self, k: usize, s: f64) -> Result<CurveEvaluation> {
         let (tri, a, b) = self.edge_in_triangle(k);
-        let uv = |corner: usize| [DVec2::ZERO, DVec2::X, DVec2::Y][corner];
-        let (pa, pb) = (uv(a), uv(b));
+        let (pa, pb) = (CORNERS[a], CORNERS[b]);
         let q = pa + s * (pb - pa);
         let d = pb - pa;
         let e = self.surface.eval_approximating(tri, q.x, q.y);
@@ -480,9 +474,7 @@ impl<'s> LimitCurve<'s> {
                 continue;
             }
             let corners = topo.triangles()[tri as usize];
-            let uv = |v: u32| {
-                [DVec2::ZERO, DVec2::X, DVec2::Y][corners.iter().position(|&x| x == v).unwrap_or(0)]
-            };
+            let uv = |v: u32| CORNERS[corners.iter().position(|&x| x == v).unwrap_or(0)];
             let (a, b) = (uv(c.chain[k]), uv(c.chain[k + 1]));
             let q = a + s * (b - a);
             let forward = runs(topo, tri, c.chain[k], c.chain[k + 1]);

@@ -10,9 +10,11 @@
 //!    swaps).
 //! 2. Files: [`io`] (formats, parse only) → [`repair`] (explicit fixes of
 //!    what was parsed, and the options to read a net with them).
-//! 3. The net: [`topology`] (connectivity only) → [`features`] (hard edges
-//!    and vertex kinds) → [`net`] (positions, validation, the limit
-//!    operator; reading a file parses, repairs and validates here).
+//! 3. The net: [`topology`] (connectivity only) → [`parameters`] (surface
+//!    points as (triangle, v, w): corners, control vertices, moving between
+//!    triangles) → [`features`] (hard edges and vertex kinds) → [`net`]
+//!    (positions, validation, the limit operator; reading a file parses,
+//!    repairs and validates here).
 //! 4. On the net: [`refine`] (uniform subdivision), [`interpolate`]
 //!    (control points whose limit passes through given points) and
 //!    [`model`] (corners, curves and faces of the hard features).
@@ -46,6 +48,7 @@ pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod net;
+pub mod parameters;
 pub mod refine;
 pub mod remesh;
 pub mod repair;
@@ -63,7 +66,8 @@ pub use folds::Fold;
 pub use glam::DVec3;
 pub use mesh::{Density, Mesher, SurfaceMesh};
 pub use net::ControlNet;
-pub use refine::{Refinement, SurfacePoint};
+pub use parameters::SurfacePoint;
+pub use refine::Refinement;
 pub use remesh::Remesher;
 pub use snap::Snap;
 pub use surface::{Curvature, Evaluation, Surface, SurfaceMode};

@@ -16,7 +16,7 @@ mod split;
 use crate::error::{Error, Result};
 use crate::features::Features;
 use crate::net::ControlNet;
-use crate::refine::SurfacePoint;
+use crate::parameters::{SurfacePoint, CORNERS};
 use crate::snap::snap_near;
 use crate::surface::{Surface, SurfaceMode};
 use crate::topology::Topology;
@@ -230,10 +230,7 @@ impl<'a> Adapter<'a> {
         let mut level = Level {
             net: net.clone(),
             charts: (0..net.triangles().len() as u32)
-                .map(|tri| FaceChart {
-                    tri,
-                    q: [DVec2::ZERO, DVec2::X, DVec2::Y],
-                })
+                .map(|tri| FaceChart { tri, q: CORNERS })
                 .collect(),
             dead: vec![false; net.points().len()],
         };

@@ -18,7 +18,7 @@
 use super::super::SurfaceMesh;
 use crate::curve::LimitCurve;
 use crate::error::{Error, Result};
-use crate::refine::SurfacePoint;
+use crate::parameters::{vertex_point, SurfacePoint};
 use crate::snap::{closest_point, snap_near};
 use crate::surface::Surface;
 use glam::DVec3;
@@ -185,13 +185,8 @@ pub fn onto_surface(
                     "vertex {i} lies on edges of curves {list:?}, which meet at no corner"
                 )));
             };
-            let tri = topo.fan(x as usize)[0];
-            let k = net.triangles()[tri as usize]
-                .iter()
-                .position(|&y| y == x)
-                .expect("a fan triangle holds its vertex");
-            let (v, w) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k];
-            Ok((i, SurfacePoint { tri, v, w }))
+            let at = vertex_point(topo, x).expect("a model corner lies on a triangle");
+            Ok((i, at))
         })
         .collect::<Result<Vec<_>>>()?;
     for (i, sp) in placed {
