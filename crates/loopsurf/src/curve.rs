@@ -133,11 +133,6 @@ impl<'s> LimitCurve<'s> {
         })
     }
 
-    /// Its number in the model.
-    pub fn index(&self) -> usize {
-        self.index
-    }
-
     /// The model curve: its chain of control vertices, edges and faces.
     pub fn curve(&self) -> &'s Curve {
         self.curve
