@@ -413,7 +413,12 @@ fn densities_over_the_budget_fail_with_the_count() {
         .size(0.025)
         .max_triangles(1_000)
         .run();
-    let message = uniform.unwrap_err().to_string();
+    let err = uniform.unwrap_err();
+    assert!(
+        matches!(err, loopsurf::Error::OverBudget { limit: 1_000, needed, .. } if needed > 1_000.0),
+        "{err:?}"
+    );
+    let message = err.to_string();
     assert!(message.contains("budget of 1000"), "{message}");
     // The unit cube's net has area 6 (its limit surface a bit less): at
     // h = 0.025 (aimed at 1.07 h, with 1.2 for edges coming out shorter
@@ -450,6 +455,17 @@ fn densities_over_the_budget_fail_with_the_count() {
     assert!(
         message.contains("starts from (allowed 4 × the budget of 5000"),
         "{message}"
+    );
+    // Said where it happened, yet still a budget error: callers (and the C
+    // ABI's LS_ERR_OVER_BUDGET) match on the kind.
+    let err = Remesher::new(&surface)
+        .tolerance(1e-4)
+        .max_triangles(5_000)
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(err.root(), loopsurf::Error::OverBudget { limit: 20_000, .. }),
+        "{err:?}"
     );
 }
 
