@@ -421,7 +421,7 @@ fn mesh_the_viking_writes_its_summary_and_files() {
             "summary lacks '{needle}':\n{summary}"
         );
     }
-    // The "done when" mesh: its quality as the summary states it.
+    // The main job's mesh: its quality as the summary states it.
     let number_after = |label: &str| -> f64 {
         let rest = &summary[summary.find(label).expect(label) + label.len()..];
         rest[..rest.find('°').expect("degrees")]
@@ -548,7 +548,7 @@ fn mesh_rejects_bad_options_with_one_line() {
 }
 
 /// `loopsurf adapt`: the summary, a .vtu with parameters and dead flags, and
-/// the seed's Table 1 with `--report`.
+/// Liu & Kondo's Table 1 with `--report`.
 #[test]
 fn adapt_the_torus_writes_its_summary_and_report() {
     let vtu = scratch("torus-adapt.vtu");
@@ -966,7 +966,7 @@ fn mesh_vtu_carries_faces_and_edges() {
     );
 }
 
-/// The command: a curved P2 .msh of the Viking with its summary;
+/// The command of docs/high-order.md: a curved P2 .msh of the Viking with its summary;
 /// `curve` puts a chart mesh written as .off back on the surface (nothing
 /// moves) and curves it to P3 in .vtu; a mesh of another model is refused
 /// by its first vertex, with one line.

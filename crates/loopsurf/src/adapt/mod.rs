@@ -1,8 +1,8 @@
-//! Adaptive Loop subdivision (seed 001, Liu & Kondo): subdivision stops in
+//! Adaptive Loop subdivision (Liu & Kondo): subdivision stops in
 //! flat regions, so the triangle count grows where the shape needs it and
 //! not ×4 everywhere.
 //!
-//! Each level runs the seed's NLFC ([`classify`]: flat and dead vertices
+//! Each level runs Liu & Kondo's NLFC ([`classify`]: flat and dead vertices
 //! by the conical angle, or by the distance to the exact limit surface),
 //! splits what is alive ([`split`]: conforming by construction) and
 //! realigns edges next to dead regions ([`realign`]). Every triangle keeps
@@ -135,7 +135,7 @@ impl<'a> Adapter<'a> {
     /// on a hard edge the normals are compared within each smooth sector,
     /// and the limit surface's bending across each triangle of the fan
     /// counts too, so that one-triangle sectors are measured (see
-    /// `classify`; nets without hard edges follow the seed exactly).
+    /// `classify`; nets without hard edges follow Liu & Kondo exactly).
     pub fn angle(mut self, degrees: f64) -> Self {
         self.angle = Some(degrees);
         self
@@ -256,7 +256,7 @@ impl<'a> Adapter<'a> {
                 None => vec![true; level.dead.len()],
             };
             // Under a tolerance a vertex must itself be within it to die
-            // (the seed asks only its neighbours to be flat), or the
+            // (Liu & Kondo ask only its neighbours to be flat), or the
             // frozen dead vertices could stay farther than promised.
             let mut within = vec![true; flat.len()];
             if let Some((surface, tol)) = tolerance {

@@ -2,7 +2,7 @@
 //! curves), their arc length, and projection onto them.
 //!
 //! A curve's parameter t runs over its chain, one unit per control edge
-//! (DESIGN.md). The crease rules (edge ½ ½, vertex ⅛ ¾ ⅛) are those of the
+//! (docs/design.md). The crease rules (edge ½ ½, vertex ⅛ ¾ ⅛) are those of the
 //! uniform cubic B-spline, and a corner is fixed, so the limit curve is, on
 //! each unit segment, the cubic B-spline segment of four chain points — at a
 //! corner end with the phantom point 2P₀ − P₁, which makes the fixed-end
