@@ -14,6 +14,7 @@
 use glam::DVec3;
 
 mod bicone;
+pub mod cad;
 mod cube;
 mod disk;
 mod sphere;
