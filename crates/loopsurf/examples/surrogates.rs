@@ -84,7 +84,9 @@ fn main() -> loopsurf::Result<()> {
         cad::lattice(LATTICE).len()
     );
     println!("Distance to the true surface, max / mean, relative to the bounding-box diagonal:\n");
-    println!("| shape | vertices | triangles | facets | approximating | solve | displacement | fit |");
+    println!(
+        "| shape | vertices | triangles | facets | approximating | solve | displacement | fit |"
+    );
     println!("|---|---:|---:|---|---|---|---|---|");
     let mut curvature_rows = Vec::new();
     let mut notes = Vec::new();
@@ -106,7 +108,11 @@ fn main() -> loopsurf::Result<()> {
     let mut net = cone.net()?;
     net.tag_by_angle(CREASE_ANGLE)?;
     let apex = DVec3::new(0.0, 0.0, cad::CONE_HEIGHT);
-    let index = net.points().iter().position(|&p| p == apex).expect("the apex is a vertex");
+    let index = net
+        .points()
+        .iter()
+        .position(|&p| p == apex)
+        .expect("the apex is a vertex");
     net.tag_vertex(index as u32)?;
     row(&cone, "cone, apex tagged", &net, &mut notes)?;
     for note in &notes {
@@ -121,13 +127,22 @@ fn main() -> loopsurf::Result<()> {
     for (name, cells) in curvature_rows {
         println!("| {name} | {} | — |", cells.join(" | "));
     }
-    println!("\nThe same shapes at chord {:e} (16× finer), facets only:\n", CHORD / 16.0);
+    println!(
+        "\nThe same shapes at chord {:e} (16× finer), facets only:\n",
+        CHORD / 16.0
+    );
     println!("| shape | vertices | triangles | facets |");
     println!("|---|---:|---:|---|");
     for shape in cad::all(CHORD / 16.0, ANGLE) {
         let ex = shape.tessellation();
         let facets = cad::facet_distance(shape.as_ref(), &ex.points, &ex.tris, LATTICE);
-        println!("| {} | {} | {} | {} |", shape.name(), ex.points.len(), ex.tris.len(), cell(&facets));
+        println!(
+            "| {} | {} | {} | {} |",
+            shape.name(),
+            ex.points.len(),
+            ex.tris.len(),
+            cell(&facets)
+        );
     }
     println!("\n({:.1} s)", start.elapsed().as_secs_f64());
     Ok(())

@@ -46,7 +46,10 @@ impl FilletedBox {
         let angle = angle_degrees.to_radians();
         let arc = |s: f64| {
             let by_chord = 2.0 * (1.0 - s / BOX_FILLET).clamp(-1.0, 1.0).acos();
-            (FRAC_PI_2 / angle).max(FRAC_PI_2 / by_chord).ceil().max(1.0) as usize
+            (FRAC_PI_2 / angle)
+                .max(FRAC_PI_2 / by_chord)
+                .ceil()
+                .max(1.0) as usize
         };
         shape.tessellation = within_chord(
             chord * shape.diagonal(),
@@ -93,7 +96,12 @@ impl FilletedBox {
                     p[c] = sc * inner[c];
                     p
                 };
-                let q = [corner(-1., -1.), corner(1., -1.), corner(1., 1.), corner(-1., 1.)];
+                let q = [
+                    corner(-1., -1.),
+                    corner(1., -1.),
+                    corner(1., 1.),
+                    corner(-1., 1.),
+                ];
                 push(&mut weld, [q[0], q[1], q[2]]);
                 push(&mut weld, [q[0], q[2], q[3]]);
                 // Fillet along `axis` between the faces normal to b and c.
@@ -190,7 +198,12 @@ impl Analytic for FilletedBox {
     }
     fn mean_curvature_at(&self, p: DVec3) -> Option<f64> {
         let x = self.closest(p);
-        let over = self.excess(x).to_array().iter().filter(|&&e| e > 1e-12).count();
+        let over = self
+            .excess(x)
+            .to_array()
+            .iter()
+            .filter(|&&e| e > 1e-12)
+            .count();
         Some(match over {
             0 | 1 => 0.0,
             2 => 0.5 / self.fillet,

@@ -63,13 +63,20 @@ pub fn surrogate_distance(shape: &dyn Analytic, surface: &Surface, n: usize) -> 
         })
         .collect::<Result<_>>()?;
     let diagonal = shape.diagonal();
-    Ok(Deviation::of(per_tri.into_iter().flatten().map(|d| d / diagonal)))
+    Ok(Deviation::of(
+        per_tri.into_iter().flatten().map(|d| d / diagonal),
+    ))
 }
 
 /// Distance from the flat facets of `points`/`tris` to the true surface of
 /// `shape`, relative to its diagonal, sampled as [`surrogate_distance`]
 /// samples a surface.
-pub fn facet_distance(shape: &dyn Analytic, points: &[DVec3], tris: &[[u32; 3]], n: usize) -> Deviation {
+pub fn facet_distance(
+    shape: &dyn Analytic,
+    points: &[DVec3],
+    tris: &[[u32; 3]],
+    n: usize,
+) -> Deviation {
     let lattice = lattice(n);
     let diagonal = shape.diagonal();
     let per_tri: Vec<Vec<f64>> = tris

@@ -25,9 +25,9 @@ mod cylinder_plate;
 mod filleted_box;
 mod measure;
 mod profile;
+mod revolved;
 mod sphere;
 pub mod tessellate;
-mod revolved;
 mod torus;
 
 pub use cone::{cone, CONE_HEIGHT, CONE_RADIUS};

@@ -264,7 +264,12 @@ impl Profile {
         (0..count)
             .map(|k| {
                 let (a, b) = (self.pieces[k], self.pieces[(k + 1) % n]);
-                let sharp = a.segment.tangent(1.0).angle_to(b.segment.tangent(0.0)).abs() > 1e-9;
+                let sharp = a
+                    .segment
+                    .tangent(1.0)
+                    .angle_to(b.segment.tangent(0.0))
+                    .abs()
+                    > 1e-9;
                 (a.segment.point(1.0), sharp, a.blend || b.blend)
             })
             .collect()

@@ -26,5 +26,11 @@ pub fn sphere(chord: f64, angle_degrees: f64) -> Revolved {
         }],
         closed: false,
     };
-    Revolved::swept("sphere", profile, 2.0 * 3f64.sqrt() * r, chord, angle_degrees)
+    Revolved::swept(
+        "sphere",
+        profile,
+        2.0 * 3f64.sqrt() * r,
+        chord,
+        angle_degrees,
+    )
 }

@@ -28,7 +28,11 @@ pub enum Ring {
 /// long slivers of a cylinder); a ring next to a pole becomes a fan. The
 /// profile's outward side must be on its right, so that the triangles are
 /// counter-clockwise seen from outside.
-pub fn revolve(profile: &[DVec2], closed: bool, steps: usize) -> (Vec<DVec3>, Vec<[u32; 3]>, Vec<Ring>) {
+pub fn revolve(
+    profile: &[DVec2],
+    closed: bool,
+    steps: usize,
+) -> (Vec<DVec3>, Vec<[u32; 3]>, Vec<Ring>) {
     let trig: Vec<(f64, f64)> = (0..steps)
         .map(|j| {
             let phi = TAU * j as f64 / steps as f64;
@@ -99,7 +103,12 @@ pub fn max_deflection(ex: &Example, distance: impl Fn(DVec3) -> f64) -> f64 {
     let mut worst: f64 = 0.0;
     for t in &ex.tris {
         let [a, b, c] = t.map(|i| ex.points[i as usize]);
-        for p in [0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3.0] {
+        for p in [
+            0.5 * (a + b),
+            0.5 * (b + c),
+            0.5 * (c + a),
+            (a + b + c) / 3.0,
+        ] {
             worst = worst.max(distance(p));
         }
     }
