@@ -75,6 +75,35 @@ fn row(
     Ok(curvature)
 }
 
+/// Relative mean-curvature error of a surface of the unit sphere on the
+/// samples whose latitude is in [lo, hi) degrees (either hemisphere).
+fn latitude_band(surface: &Surface, lo: f64, hi: f64) -> Option<Deviation> {
+    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
+    for t in 0..surface.net().triangles().len() {
+        for &(v, w) in &cad::lattice(LATTICE) {
+            let (Ok(k), Ok(x)) = (surface.curvature(t, v, w), surface.point(t, v, w)) else {
+                continue;
+            };
+            let latitude = (x.z / x.length())
+                .clamp(-1.0, 1.0)
+                .asin()
+                .abs()
+                .to_degrees();
+            if k.reliable && latitude >= lo && latitude < hi {
+                let e = (k.mean - 1.0 / cad::SPHERE_RADIUS).abs() * cad::SPHERE_RADIUS;
+                max = max.max(e);
+                sum += e;
+                n += 1;
+            }
+        }
+    }
+    (n > 0).then(|| Deviation {
+        max,
+        mean: sum / n as f64,
+        samples: n,
+    })
+}
+
 fn main() -> loopsurf::Result<()> {
     let start = Instant::now();
     let shapes = cad::all(CHORD, ANGLE);
@@ -126,6 +155,36 @@ fn main() -> loopsurf::Result<()> {
     println!("|---|---|---|---|---|");
     for (name, cells) in curvature_rows {
         println!("| {name} | {} | — |", cells.join(" | "));
+    }
+    let sphere = &shapes[1];
+    let ex = sphere.tessellation();
+    let mut valence = vec![0usize; ex.points.len()];
+    ex.tris
+        .iter()
+        .flatten()
+        .for_each(|&i| valence[i as usize] += 1);
+    println!(
+        "\nThe sphere's mean-curvature error by latitude, max / mean (the poles are vertices of \
+         valence {}):\n",
+        valence.iter().max().unwrap()
+    );
+    println!("| latitude | approximating | solve | displacement | fit |");
+    println!("|---|---|---|---|---|");
+    let mut net = sphere.net()?;
+    net.tag_by_angle(CREASE_ANGLE)?;
+    let surfaces: Vec<Option<Surface>> = MODES
+        .iter()
+        .map(|&(_, mode)| Surface::with_mode(&net, mode).ok())
+        .collect();
+    for (lo, hi) in [(0.0, 60.0), (60.0, 80.0), (80.0, 90.1)] {
+        let cells: Vec<String> = surfaces
+            .iter()
+            .map(|s| match s {
+                Some(s) => latitude_band(s, lo, hi).map_or("—".into(), |d| percent(&d)),
+                None => "failed".into(),
+            })
+            .collect();
+        println!("| {lo}°–{}° | {} | — |", hi.min(90.0), cells.join(" | "));
     }
     println!(
         "\nThe same shapes at chord {:e} (16× finer), facets only:\n",
