@@ -570,3 +570,68 @@ fn curvature_baseline_holds() {
         );
     }
 }
+
+/// The sharp features are the true ones: rims and boundaries as circles,
+/// the cone's apex as a point, none on the smooth and blended shapes; the
+/// cylinder's vertices on them are exactly its rim vertices.
+#[test]
+fn features_are_the_true_sharp_edges() {
+    use cad::Feature;
+    let circles = |s: &dyn Analytic| {
+        let mut out: Vec<(f64, f64)> = s
+            .features()
+            .iter()
+            .filter_map(|f| match *f {
+                Feature::Circle {
+                    centre,
+                    axis,
+                    radius,
+                } => {
+                    assert_eq!((centre.x, centre.y, axis), (0.0, 0.0, DVec3::Z));
+                    Some((centre.z, radius))
+                }
+                Feature::Point(_) => None,
+            })
+            .collect();
+        out.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        out
+    };
+    let points = |s: &dyn Analytic| {
+        s.features()
+            .iter()
+            .filter_map(|f| match *f {
+                Feature::Point(p) => Some(p),
+                _ => None,
+            })
+            .collect::<Vec<_>>()
+    };
+    let (r, h) = (cad::CYLINDER_RADIUS, cad::CYLINDER_HEIGHT);
+    let cylinder = cad::cylinder(CHORD, ANGLE, CapStyle::Fan);
+    assert_eq!(circles(&cylinder), vec![(0.0, r), (h, r)]);
+    assert!(points(&cylinder).is_empty(), "the disk centres are smooth");
+    let cone = cad::cone(CHORD, ANGLE);
+    assert_eq!(circles(&cone), vec![(0.0, cad::CONE_RADIUS)]);
+    assert_eq!(points(&cone), vec![DVec3::new(0.0, 0.0, cad::CONE_HEIGHT)]);
+    let plate = cad::cylinder_plate(CHORD, ANGLE);
+    assert_eq!(
+        circles(&plate),
+        vec![
+            (0.0, cad::PLATE_RADIUS),
+            (cad::BOSS_HEIGHT, cad::BOSS_RADIUS)
+        ]
+    );
+    for smooth in [
+        Box::new(cad::sphere(CHORD, ANGLE)) as Box<dyn Analytic>,
+        Box::new(cad::torus(CHORD, ANGLE)),
+        Box::new(cad::FilletedBox::new(CHORD, ANGLE)),
+    ] {
+        assert!(smooth.features().is_empty(), "{}", smooth.name());
+    }
+    // Every rim vertex of the cylinder is on a feature, no other vertex is.
+    let ex = cylinder.tessellation();
+    for &p in &ex.points {
+        let on = cylinder.features().iter().any(|f| f.distance(p) < 1e-12);
+        let rim = (p.x.hypot(p.y) - r).abs() < 1e-12 && (p.z == 0.0 || p.z == h);
+        assert_eq!(on, rim, "{p}");
+    }
+}
