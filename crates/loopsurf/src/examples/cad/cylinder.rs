@@ -50,8 +50,8 @@ pub fn cylinder(chord: f64, angle_degrees: f64, caps: CapStyle) -> Revolved {
                 chord * diagonal,
                 |s| {
                     let side = [DVec2::new(r, 0.0), DVec2::new(r, h)];
-                    let (points, mut tris, rings) =
-                        revolve(&side, false, angular_steps(r, s, angle));
+                    let n = angular_steps(r, s, angle);
+                    let (points, mut tris, rings) = revolve(&side, false, &[n, n]);
                     let (Ring::Ring(bottom), Ring::Ring(top)) = (&rings[0], &rings[1]) else {
                         unreachable!("both rims are off the axis")
                     };

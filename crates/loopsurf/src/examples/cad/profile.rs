@@ -157,12 +157,20 @@ pub struct Nearest {
 impl Profile {
     /// The points a tessellation puts on the profile: each piece cut by
     /// [`Segment::pieces`], pieces sharing their end points (a closed
-    /// profile does not repeat its first point).
-    pub fn samples(&self, sagitta: f64, angle: f64) -> Vec<DVec2> {
-        let mut out = vec![self.pieces[0].segment.point(0.0)];
-        for piece in &self.pieces {
-            let n = piece.segment.pieces(sagitta, angle);
-            out.extend((1..=n).map(|k| piece.segment.point(k as f64 / n as f64)));
+    /// profile does not repeat its first point). Each point comes with the
+    /// piece it is inside of, or `None` where it ends a piece: a joint
+    /// between two pieces or an end of the profile, which a B-rep has as
+    /// an edge of its own.
+    pub fn samples(&self, sagitta: f64, angle: f64) -> Vec<(DVec2, Option<usize>)> {
+        let n = self.pieces.len();
+        // A closed profile of one piece joins only itself: no edge there.
+        let seamless = self.closed && n == 1;
+        let start = if seamless { Some(0) } else { None };
+        let mut out = vec![(self.pieces[0].segment.point(0.0), start)];
+        for (k, piece) in self.pieces.iter().enumerate() {
+            let cuts = piece.segment.pieces(sagitta, angle);
+            out.extend((1..cuts).map(|c| (piece.segment.point(c as f64 / cuts as f64), Some(k))));
+            out.push((piece.segment.point(1.0), None));
         }
         if self.closed {
             out.pop();
@@ -328,9 +336,32 @@ impl Profile {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// The largest ρ of the profile's samples: the parallel whose chords
-    /// set the angular division.
-    pub fn max_rho(samples: &[DVec2]) -> f64 {
-        samples.iter().map(|q| q.x).fold(0.0, f64::max)
+    /// The angular steps of every sample's ring (0 on the axis), as a B-rep
+    /// exporter cuts them: an edge (a joint or an end) by its own radius,
+    /// the rings inside a piece (one face) all alike, by the piece's
+    /// largest radius, ends included.
+    pub fn ring_steps(
+        samples: &[(DVec2, Option<usize>)],
+        steps: impl Fn(f64) -> usize,
+    ) -> Vec<usize> {
+        let n = samples.len();
+        samples
+            .iter()
+            .map(|&(q, piece)| match piece {
+                _ if q.x == 0.0 => 0,
+                None => steps(q.x),
+                Some(k) => {
+                    // The piece's samples and the edges that bound it.
+                    let mut rho: f64 = 0.0;
+                    for (i, s) in samples.iter().enumerate() {
+                        if s.1 == Some(k) {
+                            let (prev, next) = (&samples[(i + n - 1) % n], &samples[(i + 1) % n]);
+                            rho = rho.max(s.0.x).max(prev.0.x).max(next.0.x);
+                        }
+                    }
+                    steps(rho)
+                }
+            })
+            .collect()
     }
 }

@@ -20,10 +20,11 @@ pub struct Revolved {
 impl Revolved {
     /// Sweeps the whole profile (poles become fans), cut by chord and
     /// angle deflection: `chord` relative to `diagonal`, `angle_degrees` the
-    /// largest turn of the true normal along a cut curve. The angular
-    /// step is the same on every parallel, as when the faces of a B-rep
-    /// share their circular edges' points: parallels near the axis get
-    /// slivers and fans.
+    /// largest turn of the true normal along a cut curve. Each piece of
+    /// the profile is a face of a B-rep: its parallels all have the angular
+    /// step of its widest one (so parallels near the axis get slivers and
+    /// fans), while a joint between pieces is an edge cut by its own
+    /// radius, and the rings on either side are stitched to it.
     pub fn swept(
         name: &'static str,
         profile: Profile,
@@ -36,8 +37,9 @@ impl Revolved {
             chord * diagonal,
             |s| {
                 let samples = profile.samples(s, angle);
-                let steps = angular_steps(Profile::max_rho(&samples), s, angle);
-                let (points, tris, _) = revolve(&samples, profile.closed, steps);
+                let steps = Profile::ring_steps(&samples, |rho| angular_steps(rho, s, angle));
+                let points: Vec<_> = samples.iter().map(|q| q.0).collect();
+                let (points, tris, _) = revolve(&points, profile.closed, &steps);
                 Example { name, points, tris }
             },
             |p| profile.closest(p).distance(p),

@@ -22,56 +22,83 @@ pub enum Ring {
     Ring(Vec<u32>),
 }
 
-/// Sweeps profile points (ρ, z) around the z axis in `steps` equal angles:
-/// a ring of vertices per point off the axis, one vertex per point on it.
-/// Consecutive rings are joined by quads cut along the same diagonal (the
-/// long slivers of a cylinder); a ring next to a pole becomes a fan. The
-/// profile's outward side must be on its right, so that the triangles are
-/// counter-clockwise seen from outside.
+/// Sweeps profile points (ρ, z) around the z axis, point k in `steps[k]`
+/// equal angles (0 on the axis): a ring of vertices per point off the
+/// axis, one vertex per point on it. Consecutive rings of the same count
+/// are joined by quads cut along the same diagonal (the long slivers of a
+/// cylinder), rings of different counts are stitched in order of angle,
+/// and a ring next to a pole becomes a fan. The profile's outward side
+/// must be on its right, so that the triangles are counter-clockwise seen
+/// from outside.
 pub fn revolve(
     profile: &[DVec2],
     closed: bool,
-    steps: usize,
+    steps: &[usize],
 ) -> (Vec<DVec3>, Vec<[u32; 3]>, Vec<Ring>) {
-    let trig: Vec<(f64, f64)> = (0..steps)
-        .map(|j| {
-            let phi = TAU * j as f64 / steps as f64;
-            (phi.cos(), phi.sin())
-        })
-        .collect();
     let mut points = Vec::new();
     let rings: Vec<Ring> = profile
         .iter()
-        .map(|q| {
+        .zip(steps)
+        .map(|(q, &n)| {
             let first = points.len() as u32;
             if q.x == 0.0 {
                 points.push(DVec3::new(0.0, 0.0, q.y));
-                Ring::Pole(first)
-            } else {
-                points.extend(trig.iter().map(|&(c, s)| DVec3::new(q.x * c, q.x * s, q.y)));
-                Ring::Ring((first..first + steps as u32).collect())
+                return Ring::Pole(first);
             }
+            points.extend((0..n).map(|j| {
+                let phi = TAU * j as f64 / n as f64;
+                DVec3::new(q.x * phi.cos(), q.x * phi.sin(), q.y)
+            }));
+            Ring::Ring((first..first + n as u32).collect())
         })
         .collect();
     let mut tris = Vec::new();
     let bands = if closed { rings.len() } else { rings.len() - 1 };
     for i in 0..bands {
-        let (a, b) = (&rings[i], &rings[(i + 1) % rings.len()]);
-        for j in 0..steps {
-            let k = (j + 1) % steps;
-            // (φ, then along the profile) is counter-clockwise outside.
-            match (a, b) {
-                (Ring::Ring(a), Ring::Ring(b)) => {
-                    tris.push([a[j], a[k], b[k]]);
-                    tris.push([a[j], b[k], b[j]]);
-                }
-                (Ring::Pole(p), Ring::Ring(b)) => tris.push([*p, b[k], b[j]]),
-                (Ring::Ring(a), Ring::Pole(p)) => tris.push([a[j], a[k], *p]),
-                (Ring::Pole(_), Ring::Pole(_)) => {}
-            }
-        }
+        band(&rings[i], &rings[(i + 1) % rings.len()], &mut tris);
     }
     (points, tris, rings)
+}
+
+/// The triangles between two consecutive rings, `a` then `b` along the
+/// profile; (φ, then along the profile) is counter-clockwise outside.
+fn band(a: &Ring, b: &Ring, tris: &mut Vec<[u32; 3]>) {
+    match (a, b) {
+        (Ring::Ring(a), Ring::Ring(b)) if a.len() == b.len() => {
+            let n = a.len();
+            for j in 0..n {
+                let k = (j + 1) % n;
+                tris.push([a[j], a[k], b[k]]);
+                tris.push([a[j], b[k], b[j]]);
+            }
+        }
+        (Ring::Ring(a), Ring::Ring(b)) => {
+            // Both rings start at φ = 0; advance the one whose next vertex
+            // comes first.
+            let (na, nb) = (a.len(), b.len());
+            let (mut i, mut j) = (0, 0);
+            while i < na || j < nb {
+                let next_a = (i + 1) as f64 / na as f64;
+                let next_b = (j + 1) as f64 / nb as f64;
+                if j == nb || (i < na && next_a <= next_b) {
+                    tris.push([a[i], a[(i + 1) % na], b[j % nb]]);
+                    i += 1;
+                } else {
+                    tris.push([a[i % na], b[(j + 1) % nb], b[j]]);
+                    j += 1;
+                }
+            }
+        }
+        (Ring::Pole(p), Ring::Ring(b)) => {
+            let n = b.len();
+            tris.extend((0..n).map(|j| [*p, b[(j + 1) % n], b[j]]));
+        }
+        (Ring::Ring(a), Ring::Pole(p)) => {
+            let n = a.len();
+            tris.extend((0..n).map(|j| [a[j], a[(j + 1) % n], *p]));
+        }
+        (Ring::Pole(_), Ring::Pole(_)) => {}
+    }
 }
 
 /// A convex polygon (vertices counter-clockwise as seen from the side the
