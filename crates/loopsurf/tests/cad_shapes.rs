@@ -648,6 +648,20 @@ fn features_are_the_true_sharp_edges() {
     ] {
         assert!(smooth.features().is_empty(), "{}", smooth.name());
     }
+    // Polylines of the features lie on them and on the true surface.
+    for f in cone.features().into_iter().chain(plate.features()) {
+        for p in f.polyline(64) {
+            assert!(f.distance(p) < 1e-12);
+            assert!(cone.distance(p) < 1e-12 || plate.distance(p) < 1e-12);
+        }
+    }
+    // Blends: the fillets and corners of the box, the fillet of the plate.
+    let b = cad::FilletedBox::new(CHORD, ANGLE);
+    assert!(b.is_blend(DVec3::new(2.0, 2.0, 0.0)) && b.is_blend(DVec3::splat(2.0)));
+    assert!(!b.is_blend(DVec3::new(0.0, 0.0, 3.0)));
+    let fillet_centre = DVec3::new(cad::BOSS_RADIUS + cad::BOSS_FILLET, 0.0, cad::BOSS_FILLET);
+    assert!(plate.is_blend(fillet_centre + DVec3::new(-0.01, 0.0, -0.01)));
+    assert!(!plate.is_blend(DVec3::new(1.2, 0.0, 0.1)));
     // Every rim vertex of the cylinder is on a feature, no other vertex is.
     let ex = cylinder.tessellation();
     for &p in &ex.points {

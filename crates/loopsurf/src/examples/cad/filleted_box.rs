@@ -214,12 +214,17 @@ impl Analytic for FilletedBox {
     fn features(&self) -> Vec<Feature> {
         vec![]
     }
-    fn smooth_margin(&self, p: DVec3) -> f64 {
+    /// Fillets (two components of the closest point beyond the inner box)
+    /// and corners (three).
+    fn is_blend(&self, p: DVec3) -> bool {
         let q = self.excess(self.closest(p));
-        let over = q.to_array().iter().filter(|&&e| e > 1e-12).count();
-        if over >= 2 {
+        q.to_array().iter().filter(|&&e| e > 1e-12).count() >= 2
+    }
+    fn smooth_margin(&self, p: DVec3) -> f64 {
+        if self.is_blend(p) {
             return 0.0;
         }
+        let q = self.excess(self.closest(p));
         // On a flat face: the distance to its tangent lines.
         q.to_array()
             .iter()

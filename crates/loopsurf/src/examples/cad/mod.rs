@@ -57,6 +57,28 @@ pub enum Feature {
 }
 
 impl Feature {
+    /// `n` points along the feature, evenly spaced (closed: the first is
+    /// not repeated), for code that wants polylines; a point is one point.
+    pub fn polyline(&self, n: usize) -> Vec<DVec3> {
+        match *self {
+            Feature::Point(q) => vec![q],
+            Feature::Circle {
+                centre,
+                axis,
+                radius,
+            } => {
+                let u = axis.any_orthonormal_vector();
+                let v = axis.cross(u);
+                (0..n)
+                    .map(|k| {
+                        let phi = std::f64::consts::TAU * k as f64 / n as f64;
+                        centre + radius * (phi.cos() * u + phi.sin() * v)
+                    })
+                    .collect()
+            }
+        }
+    }
+
     /// Exact distance from `p` to the feature.
     pub fn distance(&self, p: DVec3) -> f64 {
         match *self {
@@ -107,6 +129,9 @@ pub trait Analytic: Sync {
     fn mean_curvature_at(&self, p: DVec3) -> Option<f64>;
     /// The true sharp features: rims, boundaries, apexes.
     fn features(&self) -> Vec<Feature>;
+    /// Whether `closest(p)` is on a blend (a fillet or a corner patch that
+    /// joins other pieces with tangent continuity).
+    fn is_blend(&self, p: DVec3) -> bool;
     /// How far `closest(p)` is from where the surface stops being C²:
     /// sharp features, boundaries, apexes and the tangent seams of blends.
     /// Zero on a blend itself (fillets and corner patches), so curvature

@@ -311,6 +311,12 @@ impl Profile {
         out
     }
 
+    /// Whether the nearest point to `p` is on a blend piece.
+    pub fn is_blend(&self, p: DVec3) -> bool {
+        let (q, _) = Self::meridian(p);
+        self.pieces[self.nearest(q).piece].blend
+    }
+
     /// Distance in the meridian plane from the nearest point to `p` to the
     /// nearest feature or blend seam; zero on a blend.
     pub fn smooth_margin(&self, p: DVec3) -> f64 {

@@ -90,6 +90,9 @@ impl Analytic for Revolved {
     fn features(&self) -> Vec<Feature> {
         self.profile.features()
     }
+    fn is_blend(&self, p: DVec3) -> bool {
+        self.profile.is_blend(p)
+    }
     fn smooth_margin(&self, p: DVec3) -> f64 {
         self.profile.smooth_margin(p)
     }
