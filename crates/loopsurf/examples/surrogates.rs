@@ -1,0 +1,208 @@
+//! How faithful each surrogate surface is to the true CAD surface it was
+//! exported from: six analytic shapes tessellated as a CAD exporter does
+//! (chord and angle deflection), and the distance from the facets, the
+//! approximating Loop surface and the two interpolants to the exact
+//! surface, plus their mean-curvature error on the sphere, cylinder and
+//! torus. This is the table of docs/fitting.md.
+//!
+//! `cargo run --release -p loopsurf --example surrogates`
+
+use loopsurf::examples::cad::{self, Analytic, CapStyle, Deviation};
+use loopsurf::DVec3;
+use loopsurf::{ControlNet, Surface, SurfaceMode};
+use std::time::Instant;
+
+/// Chord tolerance of the tessellations, relative to the diagonal.
+const CHORD: f64 = 5e-4;
+/// Angle tolerance of the tessellations, degrees.
+const ANGLE: f64 = 15.0;
+/// Dihedral angle above which an edge is tagged as a crease.
+const CREASE_ANGLE: f64 = 30.0;
+/// Lattice steps per control triangle edge: 28 samples per triangle.
+const LATTICE: usize = 6;
+/// Curvature is compared this far (relative to the diagonal) from sharp
+/// features and blend seams.
+const MARGIN: f64 = 0.1;
+
+/// The surrogates measured, in column order.
+const MODES: [(&str, SurfaceMode); 3] = [
+    ("approximating", SurfaceMode::Approximating),
+    ("solve", SurfaceMode::Solve),
+    ("displacement", SurfaceMode::Displacement),
+];
+
+fn cell(d: &Deviation) -> String {
+    format!("{:.1e} / {:.1e}", d.max, d.mean)
+}
+
+fn percent(d: &Deviation) -> String {
+    format!("{:.1}% / {:.2}%", 100.0 * d.max, 100.0 * d.mean)
+}
+
+/// Prints one row of the distance table for `net` (the tessellation of
+/// `shape` with its features tagged) and returns the row's curvature
+/// cells; a surrogate that cannot be built is a note.
+fn row(
+    shape: &dyn Analytic,
+    name: &str,
+    net: &ControlNet,
+    notes: &mut Vec<String>,
+) -> loopsurf::Result<Vec<String>> {
+    let ex = shape.tessellation();
+    let facets = cad::facet_distance(shape, &ex.points, &ex.tris, LATTICE);
+    let mut cells = vec![cell(&facets)];
+    let mut curvature = Vec::new();
+    for (label, mode) in MODES {
+        match Surface::with_mode(net, mode) {
+            Ok(surface) => {
+                cells.push(cell(&cad::surrogate_distance(shape, &surface, LATTICE)?));
+                let k = cad::curvature_error(shape, &surface, LATTICE, MARGIN)?;
+                curvature.push(k.map_or("—".to_string(), |d| percent(&d)));
+            }
+            Err(e) => {
+                cells.push("failed".into());
+                curvature.push("failed".into());
+                notes.push(format!("{name} {label}: {e}"));
+            }
+        }
+    }
+    println!(
+        "| {name} | {} | {} | {} | — |",
+        ex.points.len(),
+        ex.tris.len(),
+        cells.join(" | ")
+    );
+    Ok(curvature)
+}
+
+/// Relative mean-curvature error of a surface of the unit sphere on the
+/// samples whose latitude is in [lo, hi) degrees (either hemisphere).
+fn latitude_band(surface: &Surface, lo: f64, hi: f64) -> Option<Deviation> {
+    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
+    for t in 0..surface.net().triangles().len() {
+        for &(v, w) in &cad::lattice(LATTICE) {
+            let (Ok(k), Ok(x)) = (surface.curvature(t, v, w), surface.point(t, v, w)) else {
+                continue;
+            };
+            let latitude = (x.z / x.length())
+                .clamp(-1.0, 1.0)
+                .asin()
+                .abs()
+                .to_degrees();
+            if k.reliable && latitude >= lo && latitude < hi {
+                let e = (k.mean - 1.0 / cad::SPHERE_RADIUS).abs() * cad::SPHERE_RADIUS;
+                max = max.max(e);
+                sum += e;
+                n += 1;
+            }
+        }
+    }
+    (n > 0).then(|| Deviation {
+        max,
+        mean: sum / n as f64,
+        samples: n,
+    })
+}
+
+fn main() -> loopsurf::Result<()> {
+    let start = Instant::now();
+    let shapes = cad::all(CHORD, ANGLE);
+    println!(
+        "Tessellations: chord {CHORD:e} of the diagonal, angle {ANGLE}°; creases tagged above {CREASE_ANGLE}°; \
+         {} samples per control triangle.\n",
+        cad::lattice(LATTICE).len()
+    );
+    println!("Distance to the true surface, max / mean, relative to the bounding-box diagonal:\n");
+    println!(
+        "| shape | vertices | triangles | facets | approximating | solve | displacement | fit |"
+    );
+    println!("|---|---:|---:|---|---|---|---|---|");
+    let mut curvature_rows = Vec::new();
+    let mut notes = Vec::new();
+    for shape in &shapes {
+        let mut net = shape.net()?;
+        net.tag_by_angle(CREASE_ANGLE)?;
+        let curvature = row(shape.as_ref(), shape.name(), &net, &mut notes)?;
+        if matches!(shape.name(), "sphere" | "cylinder" | "torus") {
+            curvature_rows.push((shape.name(), curvature));
+        }
+    }
+    // Variants: the fan-free caps, and the cone's apex (no dihedral angle
+    // marks it) tagged as a corner by hand.
+    let zigzag = cad::cylinder(CHORD, ANGLE, CapStyle::Zigzag);
+    let mut net = zigzag.net()?;
+    net.tag_by_angle(CREASE_ANGLE)?;
+    row(&zigzag, "cylinder, zigzag caps", &net, &mut notes)?;
+    let cone = cad::cone(CHORD, ANGLE);
+    let mut net = cone.net()?;
+    net.tag_by_angle(CREASE_ANGLE)?;
+    let apex = DVec3::new(0.0, 0.0, cad::CONE_HEIGHT);
+    let index = net
+        .points()
+        .iter()
+        .position(|&p| p == apex)
+        .expect("the apex is a vertex");
+    net.tag_vertex(index as u32)?;
+    row(&cone, "cone, apex tagged", &net, &mut notes)?;
+    for note in &notes {
+        println!("\n{note}");
+    }
+    println!(
+        "\nMean-curvature error |H − H_true| / |H_true|, max / mean, farther than {MARGIN} of the diagonal \
+         from rims and blend seams:\n"
+    );
+    println!("| shape | approximating | solve | displacement | fit |");
+    println!("|---|---|---|---|---|");
+    for (name, cells) in curvature_rows {
+        println!("| {name} | {} | — |", cells.join(" | "));
+    }
+    let sphere = &shapes[1];
+    let ex = sphere.tessellation();
+    let mut valence = vec![0usize; ex.points.len()];
+    ex.tris
+        .iter()
+        .flatten()
+        .for_each(|&i| valence[i as usize] += 1);
+    println!(
+        "\nThe sphere's mean-curvature error by latitude, max / mean (the poles are vertices of \
+         valence {}):\n",
+        valence.iter().max().unwrap()
+    );
+    println!("| latitude | approximating | solve | displacement | fit |");
+    println!("|---|---|---|---|---|");
+    let mut net = sphere.net()?;
+    net.tag_by_angle(CREASE_ANGLE)?;
+    let surfaces: Vec<Option<Surface>> = MODES
+        .iter()
+        .map(|&(_, mode)| Surface::with_mode(&net, mode).ok())
+        .collect();
+    for (lo, hi) in [(0.0, 60.0), (60.0, 80.0), (80.0, 90.1)] {
+        let cells: Vec<String> = surfaces
+            .iter()
+            .map(|s| match s {
+                Some(s) => latitude_band(s, lo, hi).map_or("—".into(), |d| percent(&d)),
+                None => "failed".into(),
+            })
+            .collect();
+        println!("| {lo}°–{}° | {} | — |", hi.min(90.0), cells.join(" | "));
+    }
+    println!(
+        "\nThe same shapes at chord {:e} (16× finer), facets only:\n",
+        CHORD / 16.0
+    );
+    println!("| shape | vertices | triangles | facets |");
+    println!("|---|---:|---:|---|");
+    for shape in cad::all(CHORD / 16.0, ANGLE) {
+        let ex = shape.tessellation();
+        let facets = cad::facet_distance(shape.as_ref(), &ex.points, &ex.tris, LATTICE);
+        println!(
+            "| {} | {} | {} | {} |",
+            shape.name(),
+            ex.points.len(),
+            ex.tris.len(),
+            cell(&facets)
+        );
+    }
+    println!("\n({:.1} s)", start.elapsed().as_secs_f64());
+    Ok(())
+}
