@@ -1,4 +1,4 @@
-//! The surface mesher (seed 000 §4): a triangulation of the limit surface
+//! The surface mesher: a triangulation of the limit surface
 //! whose every vertex lies exactly on it, uniform or curvature-adaptive,
 //! within a chord tolerance, with the control net's hard edges and corners
 //! kept as output edges and vertices.
@@ -50,10 +50,13 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// fraction of the bounding-box diagonal.
 pub const DEFAULT_ADAPT_TOLERANCE: f64 = 1e-3;
 
-/// A relative chord tolerance checked (strictly between 0 and 1), or with
-/// curvature adaptation and none given, [`DEFAULT_ADAPT_TOLERANCE`]. Shared
-/// by the chart mesher and the remesher.
-pub(crate) fn checked_tolerance(tolerance: Option<f64>, adapt: bool) -> Result<Option<f64>> {
+/// The relative chord tolerance a mesher works to: `tolerance` checked
+/// (strictly between 0 and 1, a fraction of the bounding-box diagonal),
+/// or with curvature adaptation and none given,
+/// [`DEFAULT_ADAPT_TOLERANCE`]; `None` for neither. The chart mesher and
+/// the remesher ([`crate::remesh`]) take their tolerance through it, so
+/// both accept and refuse the same values with the same words.
+pub fn chord_tolerance(tolerance: Option<f64>, adapt: bool) -> Result<Option<f64>> {
     match tolerance {
         Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => Err(Error::InvalidArgument(format!(
             "tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"
@@ -171,7 +174,7 @@ impl<'a> Mesher<'a> {
         self
     }
 
-    /// Let the density follow curvature (seed 000 §4: curvature × area),
+    /// Let the density follow curvature (curvature × area),
     /// bounded by the tolerance ([`DEFAULT_ADAPT_TOLERANCE`] if none).
     pub fn adapt_curvature(mut self, adapt: bool) -> Self {
         self.adapt = adapt;
@@ -212,7 +215,7 @@ impl<'a> Mesher<'a> {
             }
             _ => {}
         }
-        checked_tolerance(self.tolerance, self.adapt)
+        chord_tolerance(self.tolerance, self.adapt)
     }
 
     /// Meshes the surface.
