@@ -29,6 +29,7 @@ pub(crate) mod density;
 pub mod high_order;
 pub mod labels;
 mod pattern;
+mod assemble;
 mod quality;
 mod rounds;
 
@@ -45,6 +46,7 @@ use density::{bend, edge_length, grade, level, level_for_tolerance};
 use glam::{DVec2, DVec3};
 use pattern::{side_param, Pattern};
 use rayon::prelude::*;
+use assemble::assemble;
 use rounds::{Cuts, Progress};
 
 /// The chord tolerance `--adapt curvature` uses when none is given, as a
@@ -656,114 +658,6 @@ fn boundary_points(
         });
     }
     out
-}
-
-/// Numbers the vertices (used control vertices, then edge points edge by
-/// edge, then interior points triangle by triangle) and collects the output.
-fn assemble(
-    surface: &Surface,
-    corners: &[(SurfacePoint, DVec3)],
-    edge_cuts: &[EdgeCut],
-    tri_cuts: &[TriangleCut],
-    diagonal: f64,
-    measured: bool,
-) -> SurfaceMesh {
-    let net = surface.net();
-    let topo = net.topology();
-    let mut corner_index = vec![NONE; corners.len()];
-    let mut points = Vec::new();
-    let mut params = Vec::new();
-    for (v, (p, x)) in corners.iter().enumerate() {
-        if p.tri != NONE {
-            corner_index[v] = points.len() as u32;
-            points.push(*x);
-            params.push(*p);
-        }
-    }
-    let mut edge_start = Vec::with_capacity(edge_cuts.len());
-    for (e, cut) in edge_cuts.iter().enumerate() {
-        edge_start.push(points.len() as u32);
-        let t = topo.edge_triangles()[e][0];
-        points.extend_from_slice(&cut.points);
-        params.extend(cut.params.iter().map(|q| SurfacePoint {
-            tri: t,
-            v: q.x,
-            w: q.y,
-        }));
-    }
-    let mut interior_start = Vec::with_capacity(tri_cuts.len());
-    for (t, cut) in tri_cuts.iter().enumerate() {
-        interior_start.push(points.len() as u32);
-        points.extend_from_slice(&cut.points);
-        params.extend(cut.params.iter().map(|q| SurfacePoint {
-            tri: t as u32,
-            v: q.x,
-            w: q.y,
-        }));
-    }
-    let global = |t: usize, pattern: &Pattern, local: u32| -> u32 {
-        let nb = pattern.boundary_len() as u32;
-        if local >= nb {
-            return interior_start[t] + (local - nb);
-        }
-        match boundary_source(surface, t, pattern, local as usize) {
-            Source::Corner(v) => corner_index[v as usize],
-            Source::Edge(e, i) => edge_start[e] + i as u32,
-        }
-    };
-    let per_chart: Vec<Vec<[u32; 3]>> = tri_cuts
-        .par_iter()
-        .enumerate()
-        .map(|(t, cut)| {
-            cut.tris
-                .iter()
-                .map(|tri| tri.map(|l| global(t, &cut.pattern, l)))
-                .collect()
-        })
-        .collect();
-    let charts: Vec<u32> = per_chart
-        .iter()
-        .enumerate()
-        .flat_map(|(t, v)| std::iter::repeat(t as u32).take(v.len()))
-        .collect();
-    let triangles = per_chart.into_iter().flatten().collect();
-    let model = surface.model();
-    let faces = charts
-        .iter()
-        .map(|&c| model.face_of_triangle()[c as usize])
-        .collect();
-    let mut hard_edges = Vec::new();
-    let mut hard_edge_curves = Vec::new();
-    for (e, &[a, b]) in topo.edges().iter().enumerate() {
-        if net.features().is_hard_edge(e) {
-            let n = edge_cuts[e].points.len() as u32;
-            let chain: Vec<u32> = std::iter::once(corner_index[a as usize])
-                .chain((0..n).map(|i| edge_start[e] + i))
-                .chain(std::iter::once(corner_index[b as usize]))
-                .collect();
-            hard_edges.extend(chain.windows(2).map(|w| [w[0], w[1]]));
-            let curve = model.curve_of_edge(e).expect("a hard edge is on a curve");
-            hard_edge_curves.extend(std::iter::repeat(curve).take(n as usize + 1));
-        }
-    }
-    let deviation = measured.then(|| {
-        edge_cuts
-            .iter()
-            .map(|c| c.deviation)
-            .chain(tri_cuts.iter().map(|c| c.deviation))
-            .fold(0.0, f64::max)
-    });
-    SurfaceMesh {
-        points,
-        triangles,
-        params,
-        charts,
-        faces,
-        hard_edges,
-        hard_edge_curves,
-        deviation,
-        diagonal,
-    }
 }
 
 impl SurfaceMesh {
