@@ -58,7 +58,7 @@ fn snap(c: &mut Criterion) {
             .map(|_| {
                 let t = (rng.next() * net.triangles().len() as f64) as usize;
                 let e = surface.eval(t, rng.next() * 0.5, rng.next() * 0.5).unwrap();
-                let n = e.xv.cross(e.xw).normalize_or_zero();
+                let n = e.normal().unwrap_or_default();
                 e.x + (rng.next() - 0.5) * 0.02 * diagonal * n
             })
             .collect();

@@ -25,9 +25,10 @@
 use crate::error::{Error, Result};
 use crate::features::VertexKind;
 use crate::model::Curve;
+use crate::parameters::{vertex_point, SurfacePoint, CORNERS};
 use crate::surface::Surface;
 use crate::topology::NONE;
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -195,14 +196,10 @@ impl Surface {
 
     /// The approximating surface's limit position of control vertex v.
     fn limit_of_vertex(&self, v: u32) -> DVec3 {
-        let topo = self.net().topology();
-        let t = topo.fan(v as usize)[0];
-        let corner = crate::topology::corner_of(topo.triangles()[t as usize], v);
-        let (cv, cw) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][corner as usize];
         // The surface at a triangle corner is the vertex's exact limit.
-        self.eval(t as usize, cv, cw)
-            .map(|e| e.x)
-            .unwrap_or(DVec3::NAN)
+        vertex_point(self.net().topology(), v)
+            .and_then(|p| self.eval(p.tri as usize, p.v, p.w).ok())
+            .map_or(DVec3::NAN, |e| e.x)
     }
 
     /// Segment k at s ∈ (0, 1) from the surface on the curve's left (or
@@ -211,8 +208,7 @@ impl Surface {
     /// by the caller).
     fn curve_on_surface(&self, c: &Curve, k: usize, s: f64) -> Result<CurveEvaluation> {
         let (tri, a, b) = self.edge_in_triangle(c, k);
-        let uv = |corner: usize| [DVec2::ZERO, DVec2::X, DVec2::Y][corner];
-        let (pa, pb) = (uv(a), uv(b));
+        let (pa, pb) = (CORNERS[a], CORNERS[b]);
         let q = pa + s * (pb - pa);
         let d = pb - pa;
         let e = self.eval_approximating(tri, q.x, q.y);
@@ -412,7 +408,7 @@ impl Surface {
         &self,
         curve: usize,
         t: f64,
-    ) -> Result<Vec<(u32, crate::refine::SurfacePoint)>> {
+    ) -> Result<Vec<(u32, SurfacePoint)>> {
         let c = self.curve(curve)?;
         let t = self.curve_parameter(c, t)?;
         let k = (t.floor() as usize).min(c.len() - 1);
@@ -425,16 +421,14 @@ impl Surface {
                 continue;
             }
             let corners = topo.triangles()[tri as usize];
-            let uv = |v: u32| {
-                [DVec2::ZERO, DVec2::X, DVec2::Y][corners.iter().position(|&x| x == v).unwrap_or(0)]
-            };
+            let uv = |v: u32| CORNERS[corners.iter().position(|&x| x == v).unwrap_or(0)];
             let (a, b) = (uv(c.chain[k]), uv(c.chain[k + 1]));
             let q = a + s * (b - a);
             let forward = crate::model::runs(topo, tri, c.chain[k], c.chain[k + 1]);
             out.push((
                 usize::from(!forward),
                 face_of[tri as usize],
-                crate::refine::SurfacePoint {
+                SurfacePoint {
                     tri,
                     v: q.x,
                     w: q.y,

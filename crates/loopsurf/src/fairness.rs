@@ -4,7 +4,9 @@
 //! built surfaces, so it sits above [`crate::surface`].
 
 use crate::error::{Error, Result};
+use crate::geometry;
 use crate::net::ControlNet;
+use crate::parameters::vertex_in;
 use crate::surface::{Surface, SurfaceMode};
 
 /// The fairness report warns when a control point moves by more than this
@@ -95,27 +97,22 @@ pub fn fairness(original: &ControlNet, solved: &ControlNet) -> Result<FairnessRe
     }
     let before = Surface::from_net(original.clone(), SurfaceMode::Approximating)?;
     let after = Surface::from_net(solved.clone(), SurfaceMode::Solve)?;
-    for (v, (tri, [cv, cw])) in corner_parameters(original).into_iter().enumerate() {
+    for v in 0..x.len() {
+        // At a crease or corner the normal is one sector's: the vertex's
+        // lowest-numbered triangle picks it, the same in both surfaces.
+        let at = topo.fan(v).iter().min();
+        let Some(p) = at.and_then(|&tri| vertex_in(topo, tri, v as u32)) else {
+            continue; // an unreferenced vertex
+        };
+        let (tri, cv, cw) = (p.tri as usize, p.v, p.w);
         let (Ok(a), Ok(b)) = (before.normal(tri, cv, cw), after.normal(tri, cv, cw)) else {
             continue; // no tangent plane (a corner vertex's sector may have none)
         };
-        let angle = a.angle_between(b).to_degrees();
+        let angle = geometry::angle(a, b).to_degrees();
         if angle > report.max_normal_change {
             report.max_normal_change = angle;
             report.max_normal_change_vertex = v;
         }
     }
     Ok(report)
-}
-
-/// For every vertex, one triangle that has it as a corner and the corner's
-/// (v, w).
-fn corner_parameters(net: &ControlNet) -> Vec<(usize, [f64; 2])> {
-    let mut out = vec![(usize::MAX, [0.0; 2]); net.points().len()];
-    for (t, c) in net.triangles().iter().enumerate().rev() {
-        for (k, &i) in c.iter().enumerate() {
-            out[i as usize] = (t, [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]][k]);
-        }
-    }
-    out
 }

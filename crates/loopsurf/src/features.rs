@@ -6,7 +6,7 @@
 //! crease, more → corner; a tagged vertex is a corner whatever its edges.
 
 use crate::error::{Error, Result};
-use crate::geometry::is_degenerate;
+use crate::geometry;
 use crate::topology::{Topology, NONE};
 use glam::DVec3;
 
@@ -210,22 +210,14 @@ pub(crate) fn classify(tagged: bool, degree: u32, hard: u32) -> VertexKind {
     }
 }
 
-/// The angle (radians) between the normals of interior edge e's two
-/// triangles: 0 where they are coplanar, π where they fold back onto each
-/// other. `None` on a boundary, or where a triangle has zero area (no
-/// normal).
+/// The dihedral angle (radians, [`geometry::dihedral_angle`]) of interior
+/// edge e's two triangles. `None` on a boundary, or where a triangle has
+/// zero area (no normal).
 pub(crate) fn dihedral_angle(topo: &Topology, points: &[DVec3], e: usize) -> Option<f64> {
     let [t0, t1] = topo.edge_triangles()[e];
     if t0 == NONE || t1 == NONE {
         return None;
     }
     let corners = |t: u32| topo.triangles()[t as usize].map(|i| points[i as usize]);
-    let (c0, c1) = (corners(t0), corners(t1));
-    if is_degenerate(c0) || is_degenerate(c1) {
-        return None;
-    }
-    let normal = |[a, b, c]: [DVec3; 3]| (b - a).cross(c - a);
-    let (n0, n1) = (normal(c0), normal(c1));
-    // atan2 of |sin| and cos stays accurate near 0° and 180°.
-    Some(n0.cross(n1).length().atan2(n0.dot(n1)))
+    geometry::dihedral_angle(corners(t0), corners(t1))
 }

@@ -7,8 +7,10 @@
 //!    [`geometry`] (plain triangle measures and edge swaps);
 //! 2. [`io`] (file formats, parse only) and [`repair`] (explicit fixes of
 //!    dirty triangulations);
-//! 3. [`topology`] (connectivity only) → [`features`] (hard edges and
-//!    vertex kinds) → [`net`] (positions, validation, the limit operator);
+//! 3. [`topology`] (connectivity only) → [`parameters`] (surface points
+//!    as (triangle, v, w): corners, control vertices, moving between
+//!    triangles) → [`features`] (hard edges and vertex kinds) → [`net`]
+//!    (positions, validation, the limit operator);
 //! 4. [`model`] (corners, curves and faces of the hard features),
 //!    [`refine`] (uniform subdivision) and [`interpolate`] (solving for
 //!    control points whose limit passes through given points);
@@ -36,6 +38,7 @@ pub mod io;
 pub mod mesh;
 pub mod model;
 pub mod net;
+pub mod parameters;
 pub mod refine;
 pub mod remesh;
 pub mod repair;
@@ -52,7 +55,8 @@ pub use folds::Fold;
 pub use glam::DVec3;
 pub use mesh::{Density, Mesher, SurfaceMesh};
 pub use net::ControlNet;
-pub use refine::{Refinement, SurfacePoint};
+pub use parameters::SurfacePoint;
+pub use refine::Refinement;
 pub use remesh::Remesher;
 pub use snap::Snap;
 pub use surface::{Curvature, Evaluation, Surface, SurfaceMode};

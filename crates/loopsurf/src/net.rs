@@ -3,7 +3,7 @@
 
 use crate::error::{Element, Error, Result};
 use crate::features::{classify, Features, VertexKind};
-use crate::geometry::is_degenerate;
+use crate::geometry::{area, is_degenerate};
 use crate::io::{self, MeshData, ReadOptions};
 use crate::repair::{self, Repair, Repairs};
 use crate::rules;
@@ -261,10 +261,7 @@ impl ControlNet {
     pub fn area(&self) -> f64 {
         self.triangles()
             .iter()
-            .map(|c| {
-                let p = c.map(|i| self.points[i as usize]);
-                0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
-            })
+            .map(|c| area(c.map(|i| self.points[i as usize])))
             .sum()
     }
 

@@ -10,19 +10,12 @@ use crate::error::{Error, Result};
 use crate::features::Features;
 use crate::features::VertexKind;
 use crate::net::{ControlNet, NeighbourSums};
+pub use crate::parameters::SurfacePoint;
+use crate::parameters::{vertex_point, CORNERS};
 use crate::rules;
 use crate::topology::{corner_of, Topology, MIN_PER_TASK, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
-
-/// A point of the surface named by its control triangle and barycentric
-/// parameters (v, w): weights (1 − v − w, v, w) on the triangle's corners.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfacePoint {
-    pub tri: u32,
-    pub v: f64,
-    pub w: f64,
-}
 
 /// The result of [`refine_uniform`].
 #[derive(Debug, Clone)]
@@ -138,17 +131,20 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
     let topo = net.topology();
     let full = 1u16 << levels;
     let mut origins: Vec<Dyadic> = Vec::with_capacity(vertices as usize);
-    origins.extend((0..topo.num_vertices()).map(|v| match topo.fan(v).first() {
-        None => Dyadic {
-            tri: NONE,
-            i: 0,
-            j: 0,
-        },
-        Some(&t) => {
-            let [i, j] = corners(full)[corner_of(topo.triangles()[t as usize], v as u32) as usize];
-            Dyadic { tri: t, i, j }
-        }
-    }));
+    origins.extend(
+        (0..topo.num_vertices() as u32).map(|v| match vertex_point(topo, v) {
+            None => Dyadic {
+                tri: NONE,
+                i: 0,
+                j: 0,
+            },
+            Some(p) => Dyadic {
+                tri: p.tri,
+                i: p.v as u16 * full,
+                j: p.w as u16 * full,
+            },
+        }),
+    );
     let mut current = net.clone();
     for level in 0..levels {
         let topo = current.topology();
@@ -178,9 +174,9 @@ pub fn refine_uniform(net: &ControlNet, levels: u32) -> Result<Refinement> {
     })
 }
 
-/// The corners (v, w) = (0, 0), (1, 0), (0, 1) in units of 1/`full`.
+/// The [`CORNERS`] in units of 1/`full`.
 fn corners(full: u16) -> [[u16; 2]; 3] {
-    [[0, 0], [full, 0], [0, full]]
+    CORNERS.map(|c| [c.x as u16 * full, c.y as u16 * full])
 }
 
 /// Corner parameters of triangle t of the given level inside its control

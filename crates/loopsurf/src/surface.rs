@@ -7,7 +7,9 @@
 
 use crate::error::{Error, Result};
 use crate::eval::surface::{AtVertex, ChartEvaluator, Evaluator};
+use crate::eval::surface_normal;
 use crate::net::ControlNet;
+use crate::parameters::{clamp_to_triangle, CORNERS};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -89,6 +91,15 @@ impl Evaluation {
         }
         let (r, s) = (self.xv.dot(d), self.xw.dot(d));
         Some(DVec2::new(c * r - b * s, a * s - b * r) / det)
+    }
+
+    /// The unit normal Xv × Xw / |Xv × Xw| (see `eval::surface_normal`):
+    /// outward on a consistently oriented closed net. `None` exactly at a
+    /// special vertex, whose derivatives are reported as zero
+    /// ([`Surface::normal`] gives the normal there from the tangent masks),
+    /// and where Xv and Xw are parallel.
+    pub fn normal(&self) -> Option<DVec3> {
+        surface_normal(self.xv, self.xw)
     }
 
     /// X Xv Xw Xvv Xvw Xww as 18 numbers (EGADS `EG_evaluate` order).
@@ -309,10 +320,8 @@ impl Surface {
             return x;
         }
         let c = self.net.triangles()[tri].map(|i| i as usize);
-        for (k, corner) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
-            if (v, w) == corner {
-                return self.net.points()[c[k]];
-            }
+        if let Some(k) = corner_at(v, w) {
+            return self.net.points()[c[k]];
         }
         let d = c.map(|i| self.displacement[i]);
         x + ((1.0 - v - w) * d[0] + v * d[1] + w * d[2])
@@ -324,10 +333,8 @@ impl Surface {
         let c = self.net.triangles()[tri].map(|i| i as usize);
         let d = c.map(|i| self.displacement[i]);
         e.x += (1.0 - v - w) * d[0] + v * d[1] + w * d[2];
-        for (k, corner) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
-            if (v, w) == corner {
-                e.x = self.net.points()[c[k]];
-            }
+        if let Some(k) = corner_at(v, w) {
+            e.x = self.net.points()[c[k]];
         }
         if !e.at_special_vertex {
             e.xv += d[1] - d[0];
@@ -361,10 +368,9 @@ impl Surface {
         let (v, w) = self.check(tri, v, w)?;
         match self.evaluator.eval(tri, v, w) {
             Ok(_) if !self.displacement.is_empty() => {
-                let e = self.eval(tri, v, w)?;
-                Ok(e.xv.cross(e.xw).normalize_or_zero())
+                Ok(self.eval(tri, v, w)?.normal().unwrap_or_default())
             }
-            Ok(d) => Ok(d[1].cross(d[2]).normalize_or_zero()),
+            Ok(d) => Ok(surface_normal(d[1], d[2]).unwrap_or_default()),
             Err(at) => self.vertex_normal(tri, v, w, at.vertex, at.normal),
         }
     }
@@ -390,7 +396,7 @@ impl Surface {
         let inside = |h: f64| -> Option<DVec3> {
             let (a, b) = (v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w));
             let d = self.evaluator.eval(tri, a, b).ok()?;
-            d[1].cross(d[2]).try_normalize()
+            surface_normal(d[1], d[2])
         };
         let none = Error::NoTangentPlane {
             vertex,
@@ -455,10 +461,13 @@ impl Surface {
         if v < -tol || w < -tol || v + w > 1.0 + tol {
             return bad("outside the triangle (v ≥ 0, w ≥ 0, v + w ≤ 1)");
         }
-        let (v, w) = (v.max(0.0), w.max(0.0));
-        let excess = (v + w - 1.0).max(0.0);
-        Ok(((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0)))
+        Ok(clamp_to_triangle(DVec2::new(v, w)).into())
     }
+}
+
+/// Which corner of its triangle (v, w) is exactly, if any.
+fn corner_at(v: f64, w: f64) -> Option<usize> {
+    CORNERS.iter().position(|&c| c == DVec2::new(v, w))
 }
 
 /// An evaluator result as an [`Evaluation`]: exactly at a special vertex,
@@ -528,10 +537,10 @@ fn curvature_of(e: &Evaluation) -> Curvature {
     let det = ee * gg - ff * ff;
     // A degenerate or non-finite tangent plane (NaN counts as degenerate).
     let is_degenerate = det.is_nan() || det <= f64::EPSILON * ee * gg;
-    if e.at_special_vertex || is_degenerate {
-        return unreliable;
-    }
-    let n = e.xv.cross(e.xw).normalize();
+    let n = match e.normal() {
+        Some(n) if !e.at_special_vertex && !is_degenerate => n,
+        _ => return unreliable,
+    };
     // Sign: positive where the surface bends away from the outward normal.
     let (l, m, nn) = (-e.xvv.dot(n), -e.xvw.dot(n), -e.xww.dot(n));
     let gaussian = (l * nn - m * m) / det;

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use std::sync::OnceLock;
 
 /// Marks a missing triangle (the outside of a boundary edge).
-pub const NONE: u32 = u32::MAX;
+pub use crate::geometry::NONE;
 
 /// Fewest items per rayon task in per-element loops. Below twice this a
 /// loop runs on the calling thread without touching the pool: the small

@@ -128,7 +128,7 @@ fn check_mesh(name: &str, net: &ControlNet, queries: usize) {
         let t = (rng.next() * net.triangles().len() as f64) as usize;
         let (v, w) = (rng.next() * 0.5, rng.next() * 0.5);
         let e = surface.eval(t, v, w).unwrap();
-        let n = e.xv.cross(e.xw).normalize_or_zero();
+        let n = e.normal().unwrap_or_default();
         points.push(("near", e.x + (rng.next() - 0.5) * 0.02 * diagonal * n));
         // A hundred times the model size away.
         let dir = (rng.point_in(DVec3::splat(-1.0), DVec3::ONE)).normalize();

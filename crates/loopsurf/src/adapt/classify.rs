@@ -44,16 +44,12 @@
 use super::FaceChart;
 use crate::error::{Error, Result};
 use crate::features::VertexKind;
+use crate::geometry::{angle, unit_normal};
 use crate::net::ControlNet;
 use crate::surface::Surface;
 use crate::topology::{Topology, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
-
-/// The angle between two vectors, radians, accurate at both ends.
-fn angle(a: DVec3, b: DVec3) -> f64 {
-    a.cross(b).length().atan2(a.dot(b))
-}
 
 /// Where [`bending`] samples the limit normal on each edge of a triangle,
 /// as fractions of the edge from its first corner: near both ends and in
@@ -147,10 +143,7 @@ pub(crate) fn conical_angles(
     let normals: Vec<DVec3> = topo
         .triangles()
         .par_iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| points[i as usize]);
-            (b - a).cross(c - a).normalize_or_zero()
-        })
+        .map(|t| unit_normal(t.map(|i| points[i as usize])))
         .collect();
     let kinds = features.vertex_kinds(topo);
     // Vertices on a hard edge, still classified: theirs are the fans
@@ -301,7 +294,7 @@ pub(crate) fn next_dead(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec2;
+    use crate::parameters::CORNERS;
 
     fn example(name: &str) -> ControlNet {
         let ex = crate::examples::by_name(name).unwrap();
@@ -313,7 +306,7 @@ mod tests {
         (0..net.triangles().len() as u32)
             .map(|tri| FaceChart {
                 tri,
-                q: [DVec2::ZERO, DVec2::X, DVec2::Y],
+                q: CORNERS,
             })
             .collect()
     }
@@ -333,10 +326,7 @@ mod tests {
             let normals: Vec<DVec3> = net
                 .triangles()
                 .iter()
-                .map(|t| {
-                    let [a, b, c] = t.map(|i| net.points()[i as usize]);
-                    (b - a).cross(c - a).normalize()
-                })
+                .map(|t| unit_normal(t.map(|i| net.points()[i as usize])))
                 .collect();
             let all = vec![true; net.triangles().len()];
             let bend = bending(&net, &charts, &surface, &normals, &all).unwrap();

@@ -16,7 +16,7 @@ mod split;
 use crate::error::{Error, Result};
 use crate::features::Features;
 use crate::net::ControlNet;
-use crate::refine::SurfacePoint;
+use crate::parameters::{SurfacePoint, CORNERS};
 use crate::surface::{Surface, SurfaceMode};
 use crate::topology::Topology;
 use glam::{DVec2, DVec3};
@@ -231,7 +231,7 @@ impl<'a> Adapter<'a> {
             charts: (0..net.triangles().len() as u32)
                 .map(|tri| FaceChart {
                     tri,
-                    q: [DVec2::ZERO, DVec2::X, DVec2::Y],
+                    q: CORNERS,
                 })
                 .collect(),
             dead: vec![false; net.points().len()],

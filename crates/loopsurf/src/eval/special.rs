@@ -235,7 +235,7 @@ impl SpecialPatch {
                 .map(|(w, &i)| *w * points[i as usize])
                 .sum::<DVec3>()
         });
-        t1.cross(t2).try_normalize()
+        super::surface_normal(t1, t2)
     }
 
     /// The limit position of c from the positions of its neighbourhood.

@@ -7,16 +7,67 @@ use rayon::prelude::*;
 
 pub(crate) mod swap;
 
+/// An absent index: the missing triangle beside a boundary edge, a
+/// half-edge without a twin, a vertex no triangle uses. One value for the
+/// whole crate, defined in its lowest layer so that every layer can name
+/// it; no real index reaches it, since a net holds fewer than `u32::MAX`
+/// vertices and refinement refuses to make that many edges.
+pub const NONE: u32 = u32::MAX;
+
+/// The area-weighted normal of triangle (a, b, c): (b − a) × (c − a),
+/// whose length is twice the area. It points to the side from which the
+/// corners run counter-clockwise (the right-hand rule), so on a
+/// consistently oriented closed net it points outward. Sums of it over a
+/// fan weight each triangle by its area without a square root. A
+/// degenerate triangle gives a vector at round-off level (zero when two
+/// corners coincide).
+pub fn area_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+    (b - a).cross(c - a)
+}
+
+/// The unit normal of triangle (a, b, c), oriented as [`area_normal`];
+/// the zero vector where it has none (a triangle collapsed to a segment
+/// or a point), so a caller may skip it without a branch on `Option`.
+pub fn unit_normal(triangle: [DVec3; 3]) -> DVec3 {
+    area_normal(triangle).normalize_or_zero()
+}
+
+/// The area of triangle (a, b, c): half the length of its
+/// [`area_normal`]; never negative, round-off level when degenerate.
+pub fn area(triangle: [DVec3; 3]) -> f64 {
+    0.5 * area_normal(triangle).length()
+}
+
+/// The angle between two vectors, radians in [0, π], as atan2 of |a × b|
+/// and a · b: accurate near 0 and π, where the arccosine of the cosine
+/// loses half its digits (a nearly flat edge, a fold). 0 if either is zero.
+pub fn angle(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
+}
+
+/// The dihedral angle of two triangles, radians: the [`angle`] between
+/// their normals, 0 where they are coplanar and equally oriented, π where
+/// one folds back onto the other. `None` when either is degenerate
+/// ([`is_degenerate`]): a triangle without a normal has no angle to its
+/// neighbour.
+pub fn dihedral_angle(t0: [DVec3; 3], t1: [DVec3; 3]) -> Option<f64> {
+    if is_degenerate(t0) || is_degenerate(t1) {
+        return None;
+    }
+    Some(angle(area_normal(t0), area_normal(t1)))
+}
+
 /// A triangle is degenerate when twice its area is at round-off level
 /// relative to its longest edge squared: its normal is then undefined (so
 /// are the dihedral angles of its edges), though Loop subdivision itself
 /// only needs its corners.
-pub fn is_degenerate([a, b, c]: [DVec3; 3]) -> bool {
+pub fn is_degenerate(triangle: [DVec3; 3]) -> bool {
+    let [a, b, c] = triangle;
     let longest = (b - a)
         .length_squared()
         .max((c - b).length_squared())
         .max((a - c).length_squared());
-    let twice_area = (b - a).cross(c - a).length();
+    let twice_area = area_normal(triangle).length();
     twice_area <= 1e-14 * longest
 }
 

@@ -8,10 +8,7 @@
 //! Each swap raises the sorted vector of all angles lexicographically, so
 //! the loop terminates; a cap guards against round-off.
 
-use super::max_cosine;
-
-/// No twin (a side on the strip's border).
-const NONE: u32 = u32::MAX;
+use super::{area_normal, max_cosine, NONE};
 use glam::{DVec2, DVec3};
 
 /// Minimum swaps an angle must gain (as a cosine) to count, against
@@ -50,7 +47,7 @@ pub(crate) fn swap_edges(
         let worst = |t: [u32; 3]| max_cosine(p(t[0]), p(t[1]), p(t[2]));
         let before = worst([a, b, c]).max(worst([b, a, d]));
         let after = worst(n1).max(worst(n2));
-        let normal = |t: [u32; 3]| (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
+        let normal = |t: [u32; 3]| area_normal(t.map(p));
         if after >= before - GAIN || normal(n1).dot(normal(n2)) <= 0.0 || !accept(n1, n2) {
             continue;
         }

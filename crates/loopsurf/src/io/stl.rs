@@ -24,6 +24,7 @@ use stl_io::{Normal, Triangle, Vertex};
 
 use super::{read_bytes, MeshData};
 use crate::error::{Error, Result};
+use crate::geometry::unit_normal;
 
 /// Reads an STL file and welds identical corners; [`MeshData::welded`]
 /// reports how many corners were merged away.
@@ -206,18 +207,13 @@ pub fn write_stl(path: &Path, points: &[DVec3], tris: &[[u32; 3]]) -> Result<()>
         )));
     }
     let vertex = |i: u32| Vertex::new(points[i as usize].as_vec3().to_array());
-    let triangles = tris.iter().map(|t| {
-        let [a, b, c] = t.map(|i| points[i as usize]);
-        Triangle {
-            normal: Normal::new(
-                (b - a)
-                    .cross(c - a)
-                    .normalize_or_zero()
-                    .as_vec3()
-                    .to_array(),
-            ),
-            vertices: t.map(vertex),
-        }
+    let triangles = tris.iter().map(|t| Triangle {
+        normal: Normal::new(
+            unit_normal(t.map(|i| points[i as usize]))
+                .as_vec3()
+                .to_array(),
+        ),
+        vertices: t.map(vertex),
     });
     let mut w = super::create(path)?;
     stl_io::write_stl(&mut w, triangles).map_err(super::io_error(path))?;

@@ -42,7 +42,7 @@ pub(crate) fn bend(surface: &Surface, t: usize) -> Result<f64> {
         let e = surface.eval(t, v, w)?;
         // Only the normal part bends chords away from the surface (the
         // tangential part reparametrises it).
-        let n = e.xv.cross(e.xw).normalize_or_zero();
+        let n = e.normal().unwrap_or_default();
         let along = [e.xvv, e.xww, e.xvv - 2.0 * e.xvw + e.xww];
         worst = along.iter().map(|d| d.dot(n).abs()).fold(worst, f64::max);
     }

@@ -19,7 +19,7 @@
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::net::ControlNet;
-use crate::refine::SurfacePoint;
+use crate::parameters::SurfacePoint;
 use crate::surface::{Surface, PARAMETER_TOLERANCE};
 use crate::topology::NONE;
 
@@ -52,7 +52,7 @@ enum Place {
 fn place_of(net: &ControlNet, p: SurfacePoint) -> Place {
     let topo = net.topology();
     let tri = net.triangles()[p.tri as usize];
-    let weights = [1.0 - p.v - p.w, p.v, p.w];
+    let weights = p.weights();
     let zero = weights.map(|x| x.abs() <= PARAMETER_TOLERANCE);
     match zero.iter().filter(|&&z| z).count() {
         2 => {

@@ -39,7 +39,7 @@ pub use labels::{curve_edges, face_labels, CurveEdges};
 pub use quality::{MeshQuality, TriangleQuality};
 
 use crate::error::{Error, Result};
-use crate::refine::SurfacePoint;
+use crate::parameters::{self, vertex_point, SurfacePoint};
 use crate::surface::{Chart, Surface};
 use crate::topology::NONE;
 use density::{bend, edge_length, grade, level, level_for_tolerance};
@@ -528,7 +528,7 @@ fn corner_points(surface: &Surface) -> Result<Vec<(SurfacePoint, DVec3)>> {
     (0..net.points().len())
         .into_par_iter()
         .map(|v| {
-            let Some(&t) = topo.fan(v).first() else {
+            let Some(p) = vertex_point(topo, v as u32) else {
                 return Ok((
                     SurfacePoint {
                         tri: NONE,
@@ -538,17 +538,7 @@ fn corner_points(surface: &Surface) -> Result<Vec<(SurfacePoint, DVec3)>> {
                     DVec3::ZERO,
                 ));
             };
-            let k = net.triangles()[t as usize]
-                .iter()
-                .position(|&c| c as usize == v)
-                .expect("corner of its fan");
-            let q = side_param(k, 0.0);
-            let p = SurfacePoint {
-                tri: t,
-                v: q.x,
-                w: q.y,
-            };
-            Ok((p, surface.point(t as usize, q.x, q.y)?))
+            Ok((p, surface.point(p.tri as usize, p.v, p.w)?))
         })
         .collect()
 }
@@ -669,8 +659,10 @@ impl SurfaceMesh {
         let chart = self.charts[t];
         self.triangles[t].map(|i| {
             let p = self.params[i as usize];
-            let (v, w) = reparameterize(net, p, chart).unwrap_or((p.v, p.w));
-            SurfacePoint { tri: chart, v, w }
+            parameters::reparameterize(net.topology(), p, chart).unwrap_or(SurfacePoint {
+                tri: chart,
+                ..p
+            })
         })
     }
 
@@ -682,25 +674,9 @@ impl SurfaceMesh {
     }
 }
 
-/// The parameters, in control triangle `into`, of a point given in another
-/// control triangle: possible when the point lies on a corner or side that
-/// the two triangles share. `None` otherwise.
+/// [`parameters::reparameterize`] over a net's triangles, as (v, w).
 pub fn reparameterize(net: &crate::ControlNet, p: SurfacePoint, into: u32) -> Option<(f64, f64)> {
-    if p.tri == into {
-        return Some((p.v, p.w));
-    }
-    let from = net.triangles().get(p.tri as usize)?;
-    let to = net.triangles().get(into as usize)?;
-    let weights = [1.0 - p.v - p.w, p.v, p.w];
-    let mut out = [0.0; 3];
-    for k in 0..3 {
-        // Points on a side carry round-off in the third weight.
-        if weights[k].abs() > 1e-12 {
-            let j = to.iter().position(|&c| c == from[k])?;
-            out[j] = weights[k];
-        }
-    }
-    Some((out[1], out[2]))
+    parameters::reparameterize(net.topology(), p, into).map(|q| (q.v, q.w))
 }
 
 #[cfg(test)]

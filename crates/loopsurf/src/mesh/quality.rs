@@ -4,7 +4,7 @@
 
 use super::SurfaceMesh;
 use crate::error::Result;
-use crate::geometry::max_cosine;
+use crate::geometry::{area_normal, max_cosine};
 use crate::surface::{Curvature, Surface};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -46,7 +46,7 @@ fn triangle_quality(p: [DVec3; 3]) -> TriangleQuality {
         .clamp(-1.0, 1.0)
         .acos()
         .to_degrees();
-    let area2 = (p[1] - p[0]).cross(p[2] - p[0]).length();
+    let area2 = area_normal(p).length();
     let squares: f64 = (0..3).map(|k| p[k].distance_squared(p[(k + 1) % 3])).sum();
     let shape = if squares > 0.0 {
         2.0 * 3f64.sqrt() * area2 / squares

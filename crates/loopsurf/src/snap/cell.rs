@@ -10,6 +10,8 @@
 //! bulge, which is of the order of curvature × size² — so only the cells
 //! next to the nearest point survive the pruning.
 
+use crate::geometry::area_normal;
+use crate::parameters::CORNERS;
 use glam::{DVec2, DVec3};
 use std::ops::{Add, Mul, Sub};
 
@@ -131,9 +133,10 @@ impl CellBound {
 }
 
 /// The unit normal of a triangle, or a unit vector if it has none.
-fn flat_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+fn flat_normal(triangle: [DVec3; 3]) -> DVec3 {
+    let [a, b, c] = triangle;
     let (e1, e2) = (b - a, c - a);
-    e1.cross(e2)
+    area_normal(triangle)
         .try_normalize()
         .or_else(|| e1.any_orthonormal_vector().try_normalize())
         .or_else(|| e2.any_orthonormal_vector().try_normalize())
@@ -164,12 +167,12 @@ pub(crate) fn closest_in_triangle<P: Point>(p: P, a: P, b: P, c: P) -> DVec2 {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {
-        return DVec2::ZERO;
+        return CORNERS[0];
     }
     let bp = p - b;
     let (d3, d4) = (ab.dot(bp), ac.dot(bp));
     if d3 >= 0.0 && d4 <= d3 {
-        return DVec2::X;
+        return CORNERS[1];
     }
     let vc = d1 * d4 - d3 * d2;
     if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
@@ -178,7 +181,7 @@ pub(crate) fn closest_in_triangle<P: Point>(p: P, a: P, b: P, c: P) -> DVec2 {
     let cp = p - c;
     let (d5, d6) = (ab.dot(cp), ac.dot(cp));
     if d6 >= 0.0 && d5 <= d6 {
-        return DVec2::Y;
+        return CORNERS[2];
     }
     let vb = d5 * d2 - d1 * d6;
     if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
@@ -205,12 +208,8 @@ pub(crate) fn closest_in_triangle<P: Point>(p: P, a: P, b: P, c: P) -> DVec2 {
         let gap = x0 + (x1 - x0) * s - p;
         (gap.dot(gap), from + s * (to - from))
     };
-    [
-        side(DVec2::ZERO, DVec2::X),
-        side(DVec2::X, DVec2::Y),
-        side(DVec2::Y, DVec2::ZERO),
-    ]
-    .into_iter()
+    (0..3)
+    .map(|k| side(CORNERS[k], CORNERS[(k + 1) % 3]))
     .min_by(|s, t| s.0.total_cmp(&t.0))
     .map_or(DVec2::ZERO, |(_, q)| q)
 }
@@ -220,7 +219,7 @@ pub(crate) fn closest_in_triangle<P: Point>(p: P, a: P, b: P, c: P) -> DVec2 {
 /// triangles: the children of t are 4t … 4t + 3, (c0 m0 m2), (m0 c1 m1),
 /// (m2 m1 c2), (m1 m2 m0), mᵢ the midpoint of the side from cᵢ to cᵢ₊₁.
 pub(crate) fn cell_corners(cell: usize, level: u32) -> (usize, [DVec2; 3]) {
-    let mut c = [DVec2::ZERO, DVec2::X, DVec2::Y];
+    let mut c = CORNERS;
     for k in (0..level).rev() {
         let m = [
             (c[0] + c[1]) / 2.0,

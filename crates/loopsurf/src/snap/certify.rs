@@ -19,6 +19,7 @@
 
 use super::bezier::{hessian_net, Derivatives, Jet, Quartic};
 use super::cell::closest_in_triangle;
+use crate::parameters::CORNERS;
 use glam::{DVec2, DVec3};
 
 /// The quadratic model of f on a piece proven strongly convex, with the
@@ -58,7 +59,8 @@ impl Convex {
         // point of the triangle nearest to the centre (evaluated there, not
         // through the constant, which would cancel).
         let centre = u - g / self.m;
-        let delta = closest_in_triangle(centre, DVec2::ZERO, DVec2::X, DVec2::Y) - u;
+        let [c0, c1, c2] = CORNERS;
+        let delta = closest_in_triangle(centre, c0, c1, c2) - u;
         f + g.dot(delta) + 0.5 * self.m * delta.length_squared()
     }
 
@@ -122,12 +124,8 @@ fn quadratic_minimum(u: DVec2, g: DVec2, (a, b, c): (f64, f64, f64)) -> Option<D
         let e = x - u;
         g.dot(e) + 0.5 * (a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y)
     };
-    [
-        (DVec2::ZERO, DVec2::X),
-        (DVec2::X, DVec2::Y),
-        (DVec2::Y, DVec2::ZERO),
-    ]
-    .into_iter()
+    (0..3)
+    .map(|k| (CORNERS[k], CORNERS[(k + 1) % 3]))
     .map(|(from, to)| {
         // Along from + τ (to − from), τ in [0, 1].
         let e = to - from;

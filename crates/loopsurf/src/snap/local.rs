@@ -18,6 +18,7 @@
 //! the predicted gain is lost in the round-off of f (taking that last step,
 //! evaluated for its position only).
 
+use crate::parameters::{across_edge, clamp_to_triangle, SurfacePoint, CORNERS};
 use crate::surface::{Chart, Evaluation, Surface};
 use glam::{DVec2, DVec3};
 
@@ -92,9 +93,7 @@ impl Region {
     /// The nearest point of the region (round-off repair).
     fn clamp(&self, uv: DVec2) -> DVec2 {
         if self.corners == CORNERS {
-            let (v, w) = (uv.x.max(0.0), uv.y.max(0.0));
-            let excess = (v + w - 1.0).max(0.0);
-            return DVec2::new((v - excess / 2.0).max(0.0), (w - excess / 2.0).max(0.0));
+            return clamp_to_triangle(uv);
         }
         let [a, b, c] = self.corners;
         let q = super::cell::closest_in_triangle(uv, a, b, c);
@@ -264,9 +263,6 @@ enum Exit<'a> {
     /// end in the neighbour.
     Carried(Start<'a>),
 }
-
-/// The parameters of the three corners.
-const CORNERS: [DVec2; 3] = [DVec2::ZERO, DVec2::X, DVec2::Y];
 
 /// At a corner where the descent in `tri` stopped, the triangle around the
 /// vertex into which the distance still decreases fastest, with the
@@ -564,13 +560,11 @@ fn step_reach(region: &Region, uv: DVec2, step: DVec2, cap: f64) -> f64 {
 /// edges), evaluated in the triangle across that edge, if it lies in it
 /// and f = ½|X − p|² there is at most `enough`.
 ///
-/// Laid out as a parallelogram, the two triangles share one smooth
-/// parametrisation (the subdivision of one is that of the other continued),
-/// so a Newton step of one is a Newton step of the other — away from
-/// special vertices, and on surfaces without a displacement field, which
-/// kinks at every edge; the descent test guards those. With a, b the shared
-/// corners and c, d the far ones, d = a + b − c, so the point αa + βb + γc
-/// of `tri` (γ < 0 beyond the edge) is (α + γ)a + (β + γ)b − γd.
+/// Laid out as a parallelogram ([`across_edge`]), the two triangles share
+/// one smooth parametrisation (the subdivision of one is that of the other
+/// continued), so a Newton step of one is a Newton step of the other —
+/// away from special vertices, and on surfaces without a displacement
+/// field, which kinks at every edge; the descent test guards those.
 fn carry<'a>(
     surface: &'a Surface,
     p: DVec3,
@@ -578,7 +572,12 @@ fn carry<'a>(
     target: DVec2,
     enough: f64,
 ) -> Option<Start<'a>> {
-    let weights = [1.0 - target.x - target.y, target.x, target.y];
+    let here = SurfacePoint {
+        tri: tri as u32,
+        v: target.x,
+        w: target.y,
+    };
+    let weights = here.weights();
     // Beyond exactly one side: the one opposite the negative weight.
     let mut negative = (0..3).filter(|&i| weights[i] < 0.0);
     let (Some(far), None) = (negative.next(), negative.next()) else {
@@ -588,22 +587,14 @@ fn carry<'a>(
     if !is_smooth_edge(surface, tri, edge) {
         return None;
     }
-    let topo = surface.net().topology();
-    let e = topo.triangle_edges()[tri][edge] as usize;
-    let [t0, t1] = topo.edge_triangles()[e];
-    let next = if t0 as usize == tri { t1 } else { t0 } as usize;
-    let (here, there) = (topo.triangles()[tri], topo.triangles()[next]);
-    let moved = there.map(|corner| match here.iter().position(|&c| c == corner) {
-        Some(i) => weights[i] + weights[far],
-        None => -weights[far],
-    });
-    if moved.iter().any(|&b| b < 0.0) {
+    let there = across_edge(surface.net().topology(), here, edge)?;
+    if there.weights().iter().any(|&b| b < 0.0) {
         return None; // beyond the neighbour as well
     }
     let start = Start::new(
         surface,
-        next,
-        Region::WHOLE.clamp(DVec2::new(moved[1], moved[2])),
+        there.tri as usize,
+        Region::WHOLE.clamp(DVec2::new(there.v, there.w)),
     );
     (0.5 * (start.e.x - p).length_squared() <= enough).then_some(start)
 }
@@ -627,8 +618,7 @@ fn is_smooth_edge(surface: &Surface, tri: usize, k: usize) -> bool {
 /// millionth of a radian): nearly a stationary point of the distance,
 /// whatever the parametrisation does.
 fn is_stationary(e: &Evaluation, r: DVec3) -> bool {
-    let n = e.xv.cross(e.xw);
-    let Some(n) = n.try_normalize() else {
+    let Some(n) = e.normal() else {
         return true;
     };
     let tangential = r - r.dot(n) * n;
@@ -717,25 +707,14 @@ fn solve2(a: f64, b: f64, c: f64, rhs: DVec2) -> DVec2 {
     }
 }
 
-/// The same surface point seen from the triangle across local edge `edge`,
-/// or None on a boundary.
+/// The point `uv` of local edge `edge` of `tri` seen from the triangle
+/// across that edge ([`across_edge`]), or None on a boundary.
 fn across(surface: &Surface, tri: usize, edge: usize, uv: DVec2) -> Option<(usize, DVec2)> {
-    let topo = surface.net().topology();
-    let e = topo.triangle_edges()[tri][edge] as usize;
-    if topo.is_boundary_edge(e) {
-        return None;
-    }
-    let [t0, t1] = topo.edge_triangles()[e];
-    let next = if t0 as usize == tri { t1 } else { t0 } as usize;
-    let here = topo.triangles()[tri];
-    let there = topo.triangles()[next];
-    // Barycentric weights of the point in `tri`, moved to `next` by vertex.
-    let weights = [1.0 - uv.x - uv.y, uv.x, uv.y];
-    let mut moved = [0.0; 3];
-    for (k, &corner) in here.iter().enumerate() {
-        if let Some(j) = there.iter().position(|&c| c == corner) {
-            moved[j] = weights[k];
-        }
-    }
-    Some((next, Region::WHOLE.clamp(DVec2::new(moved[1], moved[2]))))
+    let p = SurfacePoint {
+        tri: tri as u32,
+        v: uv.x,
+        w: uv.y,
+    };
+    let q = across_edge(surface.net().topology(), p, edge)?;
+    Some((q.tri as usize, Region::WHOLE.clamp(DVec2::new(q.v, q.w))))
 }

@@ -13,14 +13,12 @@
 use super::bezier::Quartic;
 use super::cell::CellBound;
 use crate::eval::affine::Affine;
+use crate::parameters::CORNERS;
 use crate::surface::{Surface, SurfaceMode};
 use glam::{DVec2, DVec3};
 
 /// How many levels a piece may lie below its polynomial region.
 const MAX_DEPTH: usize = 64;
-
-/// The parameters of a control triangle's corners.
-const CORNERS: [DVec2; 3] = [DVec2::ZERO, DVec2::X, DVec2::Y];
 
 /// A piece of control triangle `tri`: the dyadic triangle `corners` (in
 /// the triangle's (v, w)) of level `level`.
@@ -108,8 +106,8 @@ impl Piece {
         (bezier, to_region): ([DVec3; 15], Affine),
     ) -> Piece {
         let from_region = inverse(&to_region);
-        let mut at = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].map(|(s, t)| {
-            let (v, w) = from_region.apply(s, t);
+        let mut at = CORNERS.map(|c| {
+            let (v, w) = from_region.apply(c.x, c.y);
             DVec2::new(v, w)
         });
         let mut q = Quartic(bezier);

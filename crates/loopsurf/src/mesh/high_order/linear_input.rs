@@ -17,7 +17,7 @@
 
 use super::super::SurfaceMesh;
 use crate::error::{Error, Result};
-use crate::refine::SurfacePoint;
+use crate::parameters::{vertex_point, SurfacePoint};
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -273,7 +273,9 @@ fn place_on_curves(
                     "vertex {i} lies on edges of curves {list:?}, which meet at no corner"
                 )));
             };
-            Ok((i, at_control_vertex(surface, x)))
+            let topo = surface.net().topology();
+            let at = vertex_point(topo, x).expect("a model corner lies on a triangle");
+            Ok((i, at))
         })
         .collect()
 }
@@ -293,17 +295,4 @@ fn nearest_corner(surface: &Surface, curves: &[u32], p: DVec3) -> Option<u32> {
         }
     }
     best.map(|(_, x)| x)
-}
-
-/// The surface point at control vertex x, in the first triangle of its
-/// fan.
-fn at_control_vertex(surface: &Surface, x: u32) -> SurfacePoint {
-    let net = surface.net();
-    let tri = net.topology().fan(x as usize)[0];
-    let k = net.triangles()[tri as usize]
-        .iter()
-        .position(|&y| y == x)
-        .expect("a fan triangle holds its vertex");
-    let (v, w) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k];
-    SurfacePoint { tri, v, w }
 }

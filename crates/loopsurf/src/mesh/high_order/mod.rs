@@ -46,9 +46,9 @@ pub use lagrange::{nodes_per_triangle, MAX_ORDER};
 pub use linear_input::{onto_surface, OntoSurface, DEFAULT_MAX_MOVE};
 pub use validity::{Distance, Validity};
 
-use super::{reparameterize, SurfaceMesh};
+use super::SurfaceMesh;
 use crate::error::{Error, Result};
-use crate::refine::SurfacePoint;
+use crate::parameters::{reparameterize, SurfacePoint};
 use crate::surface::{Surface, PARAMETER_TOLERANCE};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -381,7 +381,7 @@ fn corners(surface: &Surface, params: &[SurfacePoint]) -> Vec<(u32, u32)> {
         .iter()
         .enumerate()
         .filter_map(|(i, p)| {
-            let weights = [1.0 - p.v - p.w, p.v, p.w];
+            let weights = p.weights();
             let live: Vec<usize> = (0..3)
                 .filter(|&k| weights[k].abs() > PARAMETER_TOLERANCE)
                 .collect();
@@ -457,15 +457,15 @@ impl Placer<'_> {
         let in_chart = chart.and_then(|c| {
             params
                 .iter()
-                .map(|&p| reparameterize(net, p, c))
-                .collect::<Option<Vec<(f64, f64)>>>()
+                .map(|&p| reparameterize(net.topology(), p, c))
+                .collect::<Option<Vec<SurfacePoint>>>()
                 .map(|uv| (c, uv))
         });
         if let Some((c, uv)) = in_chart {
             let (mut v, mut w) = (0.0, 0.0);
-            for (&(pv, pw), &s) in uv.iter().zip(weights) {
-                v += s * pv;
-                w += s * pw;
+            for (q, &s) in uv.iter().zip(weights) {
+                v += s * q.v;
+                w += s * q.w;
             }
             let p = SurfacePoint { tri: c, v, w };
             return Ok((surface.point(c as usize, v, w)?, p));
@@ -535,8 +535,5 @@ fn in_face(surface: &Surface, p: SurfacePoint, face: u32) -> Option<SurfacePoint
         .iter()
         .flat_map(|&x| topo.fan(x as usize))
         .filter(|&&c| face_of[c as usize] == face)
-        .find_map(|&c| {
-            let (v, w) = reparameterize(net, p, c)?;
-            Some(SurfacePoint { tri: c, v, w })
-        })
+        .find_map(|&c| reparameterize(topo, p, c))
 }

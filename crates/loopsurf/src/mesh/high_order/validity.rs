@@ -15,6 +15,7 @@
 use super::lagrange::{basis, quadrature, reference_nodes, samples};
 use super::CurvedMesh;
 use crate::error::Result;
+use crate::geometry::unit_normal;
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -75,7 +76,7 @@ impl CurvedMesh {
             .into_par_iter()
             .map(|t| {
                 let x = self.element_points(t);
-                let normal = (x[1] - x[0]).cross(x[2] - x[0]).normalize_or_zero();
+                let normal = unit_normal([x[0], x[1], x[2]]);
                 let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
                 for b in &bases {
                     let [_, dx, dy] = apply(b, &x);
