@@ -25,11 +25,11 @@
 //! [`labels`] for the same labels of any mesh whose vertices carry their
 //! surface points.
 
+mod assemble;
 pub(crate) mod density;
 pub mod high_order;
 pub mod labels;
 mod pattern;
-mod assemble;
 mod quality;
 mod rounds;
 
@@ -42,11 +42,11 @@ use crate::error::{Error, Result};
 use crate::parameters::{self, vertex_point, SurfacePoint};
 use crate::surface::{Chart, Surface};
 use crate::topology::NONE;
+use assemble::assemble;
 use density::{bend, edge_length, grade, level, level_for_tolerance};
 use glam::{DVec2, DVec3};
 use pattern::{side_param, Pattern};
 use rayon::prelude::*;
-use assemble::assemble;
 use rounds::{Cuts, Progress};
 
 /// The chord tolerance `--adapt curvature` uses when none is given, as a
@@ -659,10 +659,8 @@ impl SurfaceMesh {
         let chart = self.charts[t];
         self.triangles[t].map(|i| {
             let p = self.params[i as usize];
-            parameters::reparameterize(net.topology(), p, chart).unwrap_or(SurfacePoint {
-                tri: chart,
-                ..p
-            })
+            parameters::reparameterize(net.topology(), p, chart)
+                .unwrap_or(SurfacePoint { tri: chart, ..p })
         })
     }
 

@@ -216,7 +216,11 @@ impl Cuts {
     /// The cuts, every one made.
     pub fn into_cuts(self) -> (Vec<EdgeCut>, Vec<TriangleCut>) {
         let edges = self.edges.into_iter().map(|c| c.expect("cut")).collect();
-        let triangles = self.triangles.into_iter().map(|c| c.expect("cut")).collect();
+        let triangles = self
+            .triangles
+            .into_iter()
+            .map(|c| c.expect("cut"))
+            .collect();
         (edges, triangles)
     }
 }

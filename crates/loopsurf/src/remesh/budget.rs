@@ -86,7 +86,12 @@ impl Budget {
 
     /// Refuses splits that left `slots` triangle slots, over their `limit`,
     /// where the sizes ask for about `expected` triangles.
-    pub fn check_splits(&self, slots: usize, limit: usize, expected: impl Fn() -> f64) -> Result<()> {
+    pub fn check_splits(
+        &self,
+        slots: usize,
+        limit: usize,
+        expected: impl Fn() -> f64,
+    ) -> Result<()> {
         if slots > limit {
             let expected = expected();
             return Err(Error::OverBudget {

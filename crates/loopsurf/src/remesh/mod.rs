@@ -188,8 +188,7 @@ impl<'a> Remesher<'a> {
                 self.gradation
             ));
         }
-        let tolerance =
-            chord_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
+        let tolerance = chord_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
         let sizing = match (self.size, self.adapt, tolerance) {
             (Some(h), false, None) => Sizing::Uniform(h * UNIFORM_AIM),
             // A size with a tolerance sizes by curvature under the size.

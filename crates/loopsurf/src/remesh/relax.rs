@@ -38,7 +38,11 @@ impl Remeshing<'_> {
     /// the mesh as it is by then: each only if [`Remeshing::accept`] takes
     /// its triangles and, with `floor`, none of them gets a smallest-angle
     /// cosine above it unless it had one already. Returns the number moved.
-    pub(super) fn apply_moves(&mut self, targets: Vec<Option<Vertex>>, floor: Option<f64>) -> usize {
+    pub(super) fn apply_moves(
+        &mut self,
+        targets: Vec<Option<Vertex>>,
+        floor: Option<f64>,
+    ) -> usize {
         let mut moved = 0;
         let mut around: Vec<([u32; 3], u32)> = Vec::new();
         for (v, target) in targets.into_iter().enumerate() {
@@ -151,13 +155,9 @@ impl Remeshing<'_> {
         // of a sharp turn of a boundary), at the point as far from
         // both.
         let [w0, w1] = sizes.map(|h| h + self.size[v as usize]);
-        let near = self.placer.on_curve(
-            (w1 * ends[0] + w0 * ends[1]) / (w0 + w1),
-            curve,
-            t,
-            t0,
-            t1,
-        )?;
+        let near =
+            self.placer
+                .on_curve((w1 * ends[0] + w0 * ends[1]) / (w0 + w1), curve, t, t0, t1)?;
         let [d0, d1] = ends.map(|x| near.x.distance(x));
         let boundary = self.placer.surface.model().curves()[curve as usize]
             .faces

@@ -115,7 +115,12 @@ impl Shrinking {
 
     /// Per control triangle, the worst chord error above `tolerance` at
     /// one of its vertices' probes (0 where none).
-    fn worst_misses(&self, work: &Remeshing, errors: &[(Vec<u32>, f64)], tolerance: f64) -> Vec<f64> {
+    fn worst_misses(
+        &self,
+        work: &Remeshing,
+        errors: &[(Vec<u32>, f64)],
+        tolerance: f64,
+    ) -> Vec<f64> {
         let mut missed = vec![0.0f64; self.factors.len()];
         for (ids, e) in errors.iter().filter(|(_, e)| *e > tolerance) {
             for &v in ids {

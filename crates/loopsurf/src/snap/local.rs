@@ -264,6 +264,18 @@ enum Exit<'a> {
     Carried(Start<'a>),
 }
 
+impl Exit<'_> {
+    /// Stopped at a minimiser, converged.
+    fn converged(uv: DVec2, x: DVec3, leaving: Option<usize>) -> Self {
+        Exit::Stopped {
+            uv,
+            x,
+            leaving,
+            converged: true,
+        }
+    }
+}
+
 /// At a corner where the descent in `tri` stopped, the triangle around the
 /// vertex into which the distance still decreases fastest, with the
 /// vertex's parameters there: a minimum is not proven by one triangle of
@@ -328,12 +340,7 @@ fn descend_in<'a>(
         mut uv,
         mut e,
     } = start;
-    let stopped = |uv, x, leaving| Exit::Stopped {
-        uv,
-        x,
-        leaving,
-        converged: true,
-    };
+    let stopped = Exit::converged;
     let mut f = 0.5 * (e.x - p).length_squared();
     // Whether the last step stopped short at the region's boundary.
     let mut clipped = false;
@@ -343,35 +350,26 @@ fn descend_in<'a>(
         let active = [0, 1, 2].map(|k| region.on_side(k, uv));
         let (newton, step) = descent_step(&e, r, g, region, active);
         let crossing = crossing_side(region, active, g);
-        if let Some(k) = crossing {
-            let newton_leaves = region.sides[k].0.dot(newton) < 0.0;
-            if walk && clipped && newton_leaves && is_smooth_edge(surface, tri, k) {
-                return stopped(uv, e.x, crossing);
-            }
+        // Newton would leave across a smooth edge after a step cut short
+        // there: the neighbour goes on.
+        let newton_leaves = |k: usize| region.sides[k].0.dot(newton) < 0.0;
+        let hand_on = crossing.is_some_and(|k| newton_leaves(k) && is_smooth_edge(surface, tri, k));
+        if walk && clipped && hand_on {
+            return stopped(uv, e.x, crossing);
         }
         let Some(step) = step.filter(|s| s.is_finite() && *s != DVec2::ZERO) else {
             return stopped(uv, e.x, crossing);
         };
         // The longest feasible multiple of the step, up to the whole step.
         let reach = step_reach(region, uv, step, 1.0);
-        let alpha = reach;
         // Close to a minimiser Newton converges quadratically: a step this
         // small, or one whose predicted gain is lost in the round-off of f
         // (where comparing values of f tells nothing), leaves an error
         // below round-off, so take it and stop ([`last_step`]).
         let slope = g.dot(step).min(0.0);
-        let length = alpha * step.length();
-        let noise = f_round_off(e.x, p);
-        if length <= CONVERGED_STEP || -alpha * slope <= noise {
-            let trial = Trial {
-                uv,
-                step,
-                alpha,
-                length,
-                f,
-                noise,
-            };
-            match last_step(&mut chart, p, region, &e, &trial) {
+        let length = reach * step.length();
+        if length <= CONVERGED_STEP || -reach * slope <= f_round_off(e.x, p) {
+            match last_step(&mut chart, p, region, &e, (uv, step), (reach, f)) {
                 LastStep::Stretched(t_uv, t_f) => {
                     uv = t_uv;
                     e = eval_at(&mut chart, uv);
@@ -389,7 +387,7 @@ fn descend_in<'a>(
                 return Exit::Carried(next);
             }
         }
-        let moved = backtrack(&mut chart, p, region, (uv, step), (alpha, f, slope));
+        let moved = backtrack(&mut chart, p, region, (uv, step), (reach, f, slope));
         let Some((t_uv, t_e, t_f, alpha)) = moved.filter(|m| m.0 != uv) else {
             return stopped(uv, e.x, crossing); // no decrease left: round-off floor
         };
@@ -431,8 +429,9 @@ fn descent_step(
             .filter(|&k| active[k])
             .filter_map(|k| {
                 let d = DVec2::new(region.sides[k].0.y, -region.sides[k].0.x);
-                let along =
-                    |(a, b, c): (f64, f64, f64)| d.x * d.x * a + 2.0 * d.x * d.y * b + d.y * d.y * c;
+                let along = |(a, b, c): (f64, f64, f64)| {
+                    d.x * d.x * a + 2.0 * d.x * d.y * b + d.y * d.y * c
+                };
                 let curvature = Some(along(full))
                     .filter(|&k| k > 0.0)
                     .unwrap_or_else(|| along(gauss_newton).max(f64::MIN_POSITIVE));
@@ -456,17 +455,6 @@ fn crossing_side(region: &Region, active: [bool; 3], g: DVec2) -> Option<usize> 
     .filter(|&k| region.sides[k].0.dot(g) > 0.0)
 }
 
-/// A step about to be taken: from `uv` along `step` times `alpha` (of
-/// length `length`), where f is `f`, known to within `noise`.
-struct Trial {
-    uv: DVec2,
-    step: DVec2,
-    alpha: f64,
-    length: f64,
-    f: f64,
-    noise: f64,
-}
-
 /// What [`last_step`] decided.
 enum LastStep {
     /// The step was stretched to this point and value: go on from there.
@@ -475,9 +463,10 @@ enum LastStep {
     Stop(DVec2, DVec3),
 }
 
-/// The last step of a converged solve: taken if it loses no more than
-/// round-off (its end is the better stationary point even where the
-/// distances tie to the last bits). Unless the point is not stationary at
+/// The last step of a converged solve, `alpha` times `step` from `uv`
+/// where f is `f`: taken if it loses no more than round-off (its end is
+/// the better stationary point even where the distances tie to the last
+/// bits). Unless the point is not stationary at
 /// all: next to an irregular vertex the derivatives blow up or vanish and
 /// Newton's steps shrink while the distance still falls — there the step
 /// is stretched and the solve goes on.
@@ -486,16 +475,11 @@ fn last_step(
     p: DVec3,
     region: &Region,
     e: &Evaluation,
-    trial: &Trial,
+    (uv, step): (DVec2, DVec2),
+    (alpha, f): (f64, f64),
 ) -> LastStep {
-    let &Trial {
-        uv,
-        step,
-        alpha,
-        length,
-        f,
-        noise,
-    } = trial;
+    let length = alpha * step.length();
+    let noise = f_round_off(e.x, p);
     let r = e.x - p;
     let at_corner = CORNERS.iter().any(|c| (uv - *c).abs().max_element() < 1e-3);
     if at_corner && !is_stationary(e, r) {

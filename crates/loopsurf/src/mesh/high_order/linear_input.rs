@@ -283,11 +283,11 @@ fn place_on_curves(
 /// Of the corners of `curves`, the control vertex nearest `p` (the first
 /// of equals), if they have any.
 fn nearest_corner(surface: &Surface, curves: &[u32], p: DVec3) -> Option<u32> {
-    let net = surface.net();
+    let (net, model) = (surface.net(), surface.model());
     let mut best: Option<(f64, u32)> = None;
     for &c in curves {
-        for corner in surface.model().curves()[c as usize].corners.into_iter().flatten() {
-            let x = surface.model().corners()[corner as usize];
+        for corner in model.curves()[c as usize].corners.into_iter().flatten() {
+            let x = model.corners()[corner as usize];
             let d = (net.points()[x as usize] - p).length();
             if best.map_or(true, |b| d < b.0) {
                 best = Some((d, x));
