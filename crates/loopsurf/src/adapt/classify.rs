@@ -1,14 +1,14 @@
-//! The seed's NLFC step (next level flags calculation): which vertices are
+//! Liu & Kondo's NLFC step (next level flags calculation): which vertices are
 //! *flat*, and which become *dead*.
 //!
-//! Seed 001 §4.2–4.4: the conical angle (CA) of a vertex is the largest
+//! Liu & Kondo: the conical angle (CA) of a vertex is the largest
 //! angle between the normals of the triangles meeting at it; the vertex is
 //! flat when its CA is below the threshold, and dead when all its
 //! neighbours are flat. Dead is final: a dead vertex is never classified
 //! again, and the vertices later created next to it inherit its deadness
 //! (see [`super::split`]).
 //!
-//! Hard features extend the seed, which has none: the normals are compared
+//! Hard features extend Liu & Kondo, who have none: the normals are compared
 //! only within one smooth sector (triangles joined around the vertex by
 //! soft edges), since the angle across a hard edge is the feature itself,
 //! not a lack of resolution; at a crease vertex the turning of the crease
@@ -20,7 +20,7 @@
 //! meshes tagged by angle: a triangle whose two edges at a vertex are both
 //! hard is a sector by itself there. Crease turning counts at crease
 //! vertices only, not at corners. What bends such a triangle's limit is
-//! then seen at its other corners or not at all (issue 19): CGAL's
+//! then seen at its other corners or not at all: CGAL's
 //! joint.off at `--hard-angle 30 --angle 11` died whole at level 1 though
 //! the limit of its triangle 385, alone in its sector at corner 98, bends
 //! 11.7° while the normals compared at its other corners spread 9°; and
@@ -34,11 +34,11 @@
 //! the triangle's own side of any hard edge. That is the limit surface's
 //! real bending across the triangle, plus the triangle's tilt against it,
 //! whatever the number of triangles in the sector. It is of the order κh,
-//! like the seed's angle between neighbouring normals (h the triangle's
+//! like Liu & Kondo's angle between neighbouring normals (h the triangle's
 //! size, κ the curvature), so it shrinks at the same rate level after
-//! level, and on smooth nets it is 0.75–0.9 of the seed's conical angle:
+//! level, and on smooth nets it is 0.75–0.9 of Liu & Kondo's conical angle:
 //! the threshold means the same with and without hard edges. Vertices on
-//! no hard edge keep the seed's conical angle exactly, and so do nets
+//! no hard edge keep Liu & Kondo's conical angle exactly, and so do nets
 //! without hard edges.
 
 use super::FaceChart;
@@ -78,7 +78,7 @@ const ALONG: [f64; 3] = [0.125, 0.5, 0.875];
 /// Why these samples: the limit normals around the triangle's edges span
 /// the surface's bending over the triangle itself, and its own normal adds
 /// its tilt against the surface; on smooth nets the largest bending in a
-/// vertex's fan is 0.75–0.9 times the seed's conical angle there (sphere
+/// vertex's fan is 0.75–0.9 times Liu & Kondo's conical angle there (sphere
 /// 0.75–0.83, torus 0.87–0.90: see the tests), so one threshold serves
 /// both. Nine normals per triangle, only in the fans of live vertices on
 /// hard edges, keep it a small part of a level.
@@ -167,44 +167,7 @@ pub(crate) fn conical_angles(
             if skip[v] {
                 return 0.0;
             }
-            let fan = topo.fan(v);
-            // Sector of each fan triangle: union over soft edges at v.
-            let mut sector: Vec<usize> = (0..fan.len()).collect();
-            fn root(s: &mut [usize], i: usize) -> usize {
-                let mut r = i;
-                while s[r] != r {
-                    r = s[r];
-                }
-                s[i] = r;
-                r
-            }
-            for (i, &t) in fan.iter().enumerate() {
-                for &e in &topo.triangle_edges()[t as usize] {
-                    let [a, b] = topo.edges()[e as usize];
-                    if (a as usize != v && b as usize != v) || features.is_hard_edge(e as usize) {
-                        continue;
-                    }
-                    let [t0, t1] = topo.edge_triangles()[e as usize];
-                    let other = if t0 == t { t1 } else { t0 };
-                    if other == NONE {
-                        continue;
-                    }
-                    if let Some(j) = fan.iter().position(|&f| f == other) {
-                        let (ri, rj) = (root(&mut sector, i), root(&mut sector, j));
-                        sector[ri] = rj;
-                    }
-                }
-            }
-            // The widest pair: the smallest cosine between unit normals.
-            let mut cos: f64 = 1.0;
-            for i in 0..fan.len() {
-                for j in i + 1..fan.len() {
-                    if root(&mut sector, i) == root(&mut sector, j) {
-                        cos = cos.min(normals[fan[i] as usize].dot(normals[fan[j] as usize]));
-                    }
-                }
-            }
-            let mut ca = cos.clamp(-1.0, 1.0).acos();
+            let mut ca = widest_in_sectors(net, v, &normals);
             if kinds[v] == VertexKind::Crease {
                 if let [a, b] = features.hard_neighbours(topo, v)[..] {
                     let p = points[v];
@@ -212,7 +175,7 @@ pub(crate) fn conical_angles(
                 }
             }
             if !bend.is_empty() && hard[v] > 0 {
-                for &t in fan {
+                for &t in topo.fan(v) {
                     ca = ca.max(bend[t as usize]);
                 }
             }
@@ -221,11 +184,58 @@ pub(crate) fn conical_angles(
         .collect())
 }
 
+/// The widest angle (radians) between the unit `normals` of two triangles
+/// at vertex v in one smooth sector (triangles joined around v by soft
+/// edges).
+fn widest_in_sectors(net: &ControlNet, v: usize, normals: &[DVec3]) -> f64 {
+    let (topo, features) = (net.topology(), net.features());
+    let fan = topo.fan(v);
+    // Sector of each fan triangle: union over soft edges at v.
+    let mut sector: Vec<usize> = (0..fan.len()).collect();
+    for (i, &t) in fan.iter().enumerate() {
+        for &e in &topo.triangle_edges()[t as usize] {
+            let [a, b] = topo.edges()[e as usize];
+            if (a as usize != v && b as usize != v) || features.is_hard_edge(e as usize) {
+                continue;
+            }
+            let [t0, t1] = topo.edge_triangles()[e as usize];
+            let other = if t0 == t { t1 } else { t0 };
+            if other == NONE {
+                continue;
+            }
+            if let Some(j) = fan.iter().position(|&f| f == other) {
+                let (ri, rj) = (root(&mut sector, i), root(&mut sector, j));
+                sector[ri] = rj;
+            }
+        }
+    }
+    // The widest pair: the smallest cosine between unit normals.
+    let mut cos: f64 = 1.0;
+    for i in 0..fan.len() {
+        for j in i + 1..fan.len() {
+            if root(&mut sector, i) == root(&mut sector, j) {
+                cos = cos.min(normals[fan[i] as usize].dot(normals[fan[j] as usize]));
+            }
+        }
+    }
+    cos.clamp(-1.0, 1.0).acos()
+}
+
+/// The root of i's set in the union-find array `s`, pointing i at it.
+fn root(s: &mut [usize], i: usize) -> usize {
+    let mut r = i;
+    while s[r] != r {
+        r = s[r];
+    }
+    s[i] = r;
+    r
+}
+
 /// How far every vertex's neighbourhood is from the limit surface, model
 /// units: the larger of the vertex's distance to the surface at its own
 /// parameters and, for each edge at it, the distance of the edge's
-/// midpoint to the surface at the midpoint's parameters (issue 7's cheap
-/// proxy for the distance of the refined mesh to the surface).
+/// midpoint to the surface at the midpoint's parameters (a cheap proxy
+/// for the distance of the refined mesh to the surface).
 pub(crate) fn surface_errors(
     net: &ControlNet,
     charts: &[FaceChart],
@@ -304,25 +314,22 @@ mod tests {
     /// Level 0: every triangle its own control triangle.
     fn charts(net: &ControlNet) -> Vec<FaceChart> {
         (0..net.triangles().len() as u32)
-            .map(|tri| FaceChart {
-                tri,
-                q: CORNERS,
-            })
+            .map(|tri| FaceChart { tri, q: CORNERS })
             .collect()
     }
 
-    /// The bending is on the seed's scale: on smooth nets (no hard edge, so
-    /// every fan is one sector and the seed's angle is meaningful) the
+    /// The bending is on Liu & Kondo's scale: on smooth nets (no hard edge,
+    /// so every fan is one sector and their angle is meaningful) the
     /// widest bending in each vertex's fan is 0.7–0.95 of its conical
     /// angle, at every vertex. A measure off by a factor would make one
     /// threshold mean two things.
     #[test]
-    fn bending_matches_the_seed_angle_on_smooth_nets() {
+    fn bending_matches_the_conical_angle_on_smooth_nets() {
         for (name, lo, hi) in [("sphere", 0.72, 0.86), ("torus", 0.84, 0.93)] {
             let net = example(name);
             let (surface, charts) = (Surface::new(&net).unwrap(), charts(&net));
             let skip = vec![false; net.points().len()];
-            let seed = conical_angles(&net, &charts, &skip, None).unwrap();
+            let angles = conical_angles(&net, &charts, &skip, None).unwrap();
             let normals: Vec<DVec3> = net
                 .triangles()
                 .iter()
@@ -330,7 +337,7 @@ mod tests {
                 .collect();
             let all = vec![true; net.triangles().len()];
             let bend = bending(&net, &charts, &surface, &normals, &all).unwrap();
-            for (v, &ca) in seed.iter().enumerate() {
+            for (v, &ca) in angles.iter().enumerate() {
                 assert!(ca > 5.0, "{name}: vertex {v} is curved ({ca}°)");
                 let widest = net
                     .topology()
@@ -341,33 +348,33 @@ mod tests {
                 let ratio = widest / ca;
                 assert!(
                     (lo..=hi).contains(&ratio),
-                    "{name}: vertex {v}: bending {widest}° against the seed's {ca}°"
+                    "{name}: vertex {v}: bending {widest}° against the conical angle {ca}°"
                 );
             }
         }
     }
 
-    /// Without hard edges the limit surface changes nothing: the seed's
+    /// Without hard edges the limit surface changes nothing: Liu & Kondo's
     /// conical angle, bit for bit.
     #[test]
-    fn nets_without_hard_edges_keep_the_seed_angle() {
+    fn nets_without_hard_edges_keep_the_conical_angle() {
         for name in ["sphere", "torus", "viking"] {
             let net = example(name);
             assert_eq!(net.features().num_hard_edges(), 0, "{name}");
             let (surface, charts) = (Surface::new(&net).unwrap(), charts(&net));
             let skip: Vec<bool> = (0..net.points().len()).map(|v| v % 7 == 0).collect();
-            let seed = conical_angles(&net, &charts, &skip, None).unwrap();
+            let angles = conical_angles(&net, &charts, &skip, None).unwrap();
             let with = conical_angles(&net, &charts, &skip, Some(&surface)).unwrap();
-            assert_eq!(seed, with, "{name}");
+            assert_eq!(angles, with, "{name}");
         }
     }
 
     /// A triangle alone in its sector at a vertex (both its edges there
-    /// hard) adds nothing to the seed's angle, however its limit bends; its
+    /// hard) adds nothing to Liu & Kondo's angle, however its limit bends; its
     /// bending does. The sphere with every edge at vertex 0 tagged: the
     /// vertex becomes a corner whose five sectors are one triangle each, the
     /// surface there is as curved as before, and it must count about as
-    /// much as the seed's angle of the untagged vertex (18.6°).
+    /// much as the conical angle of the untagged vertex (18.6°).
     #[test]
     fn one_triangle_sectors_count_their_limit_bending() {
         let plain = example("sphere");
@@ -380,9 +387,9 @@ mod tests {
         let (surface, charts) = (Surface::new(&net).unwrap(), charts(&net));
         let skip = vec![false; net.points().len()];
         let untagged = conical_angles(&plain, &charts, &skip, None).unwrap();
-        let seed = conical_angles(&net, &charts, &skip, None).unwrap();
+        let angles = conical_angles(&net, &charts, &skip, None).unwrap();
         let with = conical_angles(&net, &charts, &skip, Some(&surface)).unwrap();
-        assert_eq!(seed[v], 0.0, "every sector at the corner is one triangle");
+        assert_eq!(angles[v], 0.0, "every sector at the corner is one triangle");
         let ratio = with[v] / untagged[v];
         assert!(
             (0.72..=0.9).contains(&ratio),
@@ -390,8 +397,8 @@ mod tests {
             with[v],
             untagged[v]
         );
-        for (u, (&s, &w)) in seed.iter().zip(&with).enumerate() {
-            assert!(w >= s, "vertex {u}: {w}° below the seed's {s}°");
+        for (u, (&s, &w)) in angles.iter().zip(&with).enumerate() {
+            assert!(w >= s, "vertex {u}: {w}° below the conical angle {s}°");
         }
     }
 }

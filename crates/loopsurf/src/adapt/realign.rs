@@ -1,7 +1,7 @@
-//! Local mesh realignment (seed 001 §4.5, LMR), done as max–min angle
+//! Local mesh realignment (Liu & Kondo's LMR), done as max–min angle
 //! edge swaps.
 //!
-//! The seed's LMR flips the new dead edges between live triangles (its
+//! Liu & Kondo's LMR flips the new dead edges between live triangles (its
 //! rule 1) and re-triangulates around new dead vertices (rule 2), because
 //! its splits leave slivers where dead and live regions meet. Here the
 //! splits are conforming by construction (see [`super::split`]), so
