@@ -100,7 +100,6 @@ impl Topology {
     fn refined_with(&self, min_len: usize) -> Topology {
         // Every output slot is a pure function of its parent, so each array
         // is filled in place, in parallel, with no searching or scattering.
-        let nv = self.nverts as u32;
         let ne = self.edges.len();
         let nt = self.tris.len();
         let mut edges = vec![[0u32; 2]; 2 * ne + 3 * nt];
@@ -110,6 +109,34 @@ impl Topology {
         // overwritten below.
         let mut edge_tris = vec![[0u32; 2]; 2 * ne + 3 * nt];
         let (halves, inner) = edges.split_at_mut(2 * ne);
+        self.fill_halves(halves, min_len);
+        let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
+        self.fill_half_triangles(half_tris, min_len);
+        inner_tris
+            .par_chunks_mut(3)
+            .with_min_len(min_len)
+            .enumerate()
+            .for_each(|(t, out)| {
+                let t = t as u32;
+                for (i, slot) in out.iter_mut().enumerate() {
+                    *slot = [4 * t + i as u32, 4 * t + 3];
+                }
+            });
+        self.fill_children(inner, &mut tris, &mut tri_edges, min_len);
+        Topology {
+            nverts: self.nverts + ne,
+            tris,
+            edges,
+            edge_tris,
+            tri_edges,
+            rings: OnceLock::new(),
+        }
+    }
+
+    /// The refined edges 2e and 2e + 1: edge e's halves, from each end to
+    /// its midpoint vertex.
+    fn fill_halves(&self, halves: &mut [[u32; 2]], min_len: usize) {
+        let nv = self.nverts as u32;
         halves
             .par_chunks_mut(2)
             .with_min_len(min_len)
@@ -120,7 +147,11 @@ impl Topology {
                 out[0] = [a, m];
                 out[1] = [b, m];
             });
-        let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
+    }
+
+    /// The triangles of edge e's halves: the children at each end's corner
+    /// of e's triangles.
+    fn fill_half_triangles(&self, half_tris: &mut [[u32; 2]], min_len: usize) {
         half_tris
             .par_chunks_mut(2)
             .with_min_len(min_len)
@@ -137,16 +168,19 @@ impl Topology {
                     out[h] = [child(t0, v), child(t1, v)];
                 }
             });
-        inner_tris
-            .par_chunks_mut(3)
-            .with_min_len(min_len)
-            .enumerate()
-            .for_each(|(t, out)| {
-                let t = t as u32;
-                for (i, slot) in out.iter_mut().enumerate() {
-                    *slot = [4 * t + i as u32, 4 * t + 3];
-                }
-            });
+    }
+
+    /// Each triangle's three interior edges and four children, with the
+    /// children's edges.
+    fn fill_children(
+        &self,
+        inner: &mut [[u32; 2]],
+        tris: &mut [[u32; 3]],
+        tri_edges: &mut [[u32; 3]],
+        min_len: usize,
+    ) {
+        let nv = self.nverts as u32;
+        let ne = self.edges.len();
         inner
             .par_chunks_mut(3)
             .zip(tris.par_chunks_mut(4))
@@ -178,14 +212,6 @@ impl Topology {
                 child_tris[3] = [m[1], m[2], m[0]];
                 child_edges[3] = [inner(2), inner(0), inner(1)];
             });
-        Topology {
-            nverts: self.nverts + ne,
-            tris,
-            edges,
-            edge_tris,
-            tri_edges,
-            rings: OnceLock::new(),
-        }
     }
 
     /// Number of vertices, including unreferenced ones.
