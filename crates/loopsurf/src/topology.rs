@@ -668,15 +668,46 @@ type EdgeArrays = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>);
 /// and checks that each edge has one or two triangles traversing it in
 /// opposite directions.
 fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
+    let order = sorted_half_edges(tris);
+    let (groups, group_of_slot) = group_half_edges(tris, &order)?;
+    // Edges numbered in order of their first half-edge.
+    let nslots = tris.len() * 3;
+    let mut id_of_group = vec![NONE; groups.len()];
+    let mut edges = Vec::with_capacity(groups.len());
+    let mut edge_tris = Vec::with_capacity(groups.len());
+    let mut tri_edges = vec![[0u32; 3]; tris.len()];
+    for slot in 0..nslots {
+        let g = group_of_slot[slot] as usize;
+        if id_of_group[g] == NONE {
+            id_of_group[g] = edges.len() as u32;
+            let (start, len) = groups[g];
+            let k = order[start].0;
+            edges.push([(k >> 32) as u32, k as u32]);
+            let t0 = order[start].1 / 3;
+            let t1 = if len == 2 {
+                order[start + 1].1 / 3
+            } else {
+                NONE
+            };
+            edge_tris.push([t0.min(t1), if len == 2 { t0.max(t1) } else { NONE }]);
+        }
+        tri_edges[slot / 3][slot % 3] = id_of_group[g];
+    }
+    Ok((edges, edge_tris, tri_edges))
+}
+
+/// The half-edge slots (3t + k runs from corner k of triangle t) keyed by
+/// their sorted ends, smaller << 32 | larger, and sorted by key: a
+/// counting sort on the smaller vertex, then each bucket (a vertex's few
+/// edges) sorted on its own. The same order as a full sort, in linear
+/// time; this is most of building a topology.
+fn sorted_half_edges(tris: &[[u32; 3]]) -> Vec<(u64, u32)> {
     let nslots = tris.len() * 3;
     let key = |slot: usize| {
         let c = tris[slot / 3];
         let [a, b] = sorted(c[slot % 3], c[(slot + 1) % 3]);
         (a as u64) << 32 | b as u64
     };
-    // Sorted by key: a counting sort on the smaller vertex, then each
-    // bucket (a vertex's few edges) sorted on its own. The same order as a
-    // full sort, in linear time; this is most of building a topology.
     let nverts = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
     let mut start = vec![0u32; nverts + 1];
     for s in 0..nslots {
@@ -696,8 +727,17 @@ fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
     for v in 0..nverts {
         order[start[v] as usize..start[v + 1] as usize].sort_unstable();
     }
-    // Group runs of equal keys; give each group the id of its first appearance.
-    let mut group_of_slot = vec![0u32; nslots];
+    order
+}
+
+/// The runs of equal keys in `order`, as (start, length), and each slot's
+/// run; a run of more than two half-edges is a non-manifold edge, and two
+/// running the same way an inconsistent orientation.
+fn group_half_edges(
+    tris: &[[u32; 3]],
+    order: &[(u64, u32)],
+) -> Result<(Vec<(usize, usize)>, Vec<u32>)> {
+    let mut group_of_slot = vec![0u32; tris.len() * 3];
     let mut groups: Vec<(usize, usize)> = Vec::new(); // (start, len) in `order`
     let mut i = 0;
     while i < order.len() {
@@ -735,28 +775,7 @@ fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
         groups.push((i, j - i));
         i = j;
     }
-    let mut id_of_group = vec![NONE; groups.len()];
-    let mut edges = Vec::with_capacity(groups.len());
-    let mut edge_tris = Vec::with_capacity(groups.len());
-    let mut tri_edges = vec![[0u32; 3]; tris.len()];
-    for slot in 0..nslots {
-        let g = group_of_slot[slot] as usize;
-        if id_of_group[g] == NONE {
-            id_of_group[g] = edges.len() as u32;
-            let (start, len) = groups[g];
-            let k = order[start].0;
-            edges.push([(k >> 32) as u32, k as u32]);
-            let t0 = order[start].1 / 3;
-            let t1 = if len == 2 {
-                order[start + 1].1 / 3
-            } else {
-                NONE
-            };
-            edge_tris.push([t0.min(t1), if len == 2 { t0.max(t1) } else { NONE }]);
-        }
-        tri_edges[slot / 3][slot % 3] = id_of_group[g];
-    }
-    Ok((edges, edge_tris, tri_edges))
+    Ok((groups, group_of_slot))
 }
 
 #[cfg(test)]
