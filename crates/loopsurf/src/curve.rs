@@ -404,11 +404,7 @@ impl Surface {
     /// The surface points of curve parameter t: (face, triangle, v, w) on
     /// each side of the curve (one for a boundary curve; a dart's slit has
     /// its face twice), in the order of [`Curve::faces`].
-    pub fn curve_surface_points(
-        &self,
-        curve: usize,
-        t: f64,
-    ) -> Result<Vec<(u32, SurfacePoint)>> {
+    pub fn curve_surface_points(&self, curve: usize, t: f64) -> Result<Vec<(u32, SurfacePoint)>> {
         let c = self.curve(curve)?;
         let t = self.curve_parameter(c, t)?;
         let k = (t.floor() as usize).min(c.len() - 1);

@@ -132,3 +132,108 @@ pub fn across_edge(topo: &Topology, p: SurfacePoint, edge: usize) -> Option<Surf
         w: moved[2],
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// The unit square cut along its diagonal 0–2: triangles (0, 1, 2)
+    /// and (0, 2, 3), a parallelogram, so one affine map covers both.
+    fn square() -> (Topology, [DVec3; 4]) {
+        let topo = Topology::new(4, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
+        let points =
+            [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].map(|[x, y]| DVec3::new(x, y, 0.0));
+        (topo, points)
+    }
+
+    /// Where a surface point sits on the flat square, from its own weights.
+    fn flat(topo: &Topology, points: &[DVec3; 4], p: SurfacePoint) -> DVec3 {
+        let c = topo.triangles()[p.tri as usize];
+        let [a, b, d] = [1.0 - p.v - p.w, p.v, p.w];
+        a * points[c[0] as usize] + b * points[c[1] as usize] + d * points[c[2] as usize]
+    }
+
+    #[test]
+    fn corners_carry_all_the_weight_of_their_own_vertex() {
+        for k in 0..3 {
+            let mut expected = [0.0; 3];
+            expected[k] = 1.0;
+            assert_eq!(SurfacePoint::corner(7, k).weights(), expected);
+        }
+    }
+
+    #[test]
+    fn a_vertex_is_a_corner_of_a_triangle_holding_it() {
+        let (topo, points) = square();
+        for v in 0..4 {
+            let p = vertex_point(&topo, v).unwrap();
+            assert_eq!(flat(&topo, &points, p), points[v as usize]);
+        }
+        assert_eq!(vertex_in(&topo, 0, 3), None);
+        let unused = Topology::new(5, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
+        assert_eq!(vertex_point(&unused, 4), None);
+    }
+
+    #[test]
+    fn across_an_edge_the_point_stays_where_it_is() {
+        let (topo, points) = square();
+        // Edge 2 of triangle 0 runs from corner 2 to corner 0: the diagonal.
+        // On it, inside the far triangle, and beyond the far triangle too.
+        for (v, w) in [
+            (0.0, 0.5),
+            (0.0, 0.25),
+            (-0.25, 0.5),
+            (-0.5, 0.75),
+            (-1.0, 1.5),
+        ] {
+            let p = SurfacePoint { tri: 0, v, w };
+            let q = across_edge(&topo, p, 2).unwrap();
+            assert_eq!(q.tri, 1);
+            let gap = flat(&topo, &points, q) - flat(&topo, &points, p);
+            assert!(gap.length() < 1e-15, "({v}, {w}): {gap}");
+        }
+        // Edge 0 of triangle 0 (corners 0 and 1) is on the boundary.
+        let p = SurfacePoint {
+            tri: 0,
+            v: 0.5,
+            w: 0.0,
+        };
+        assert_eq!(across_edge(&topo, p, 0), None);
+    }
+
+    #[test]
+    fn reparameterizing_needs_a_shared_corner_or_side() {
+        let (topo, points) = square();
+        let on_diagonal = SurfacePoint {
+            tri: 0,
+            v: 0.0,
+            w: 0.7,
+        };
+        let q = reparameterize(&topo, on_diagonal, 1).unwrap();
+        assert_eq!(q.tri, 1);
+        assert!((flat(&topo, &points, q) - flat(&topo, &points, on_diagonal)).length() < 1e-15);
+        let corner = SurfacePoint::corner(0, 0);
+        assert_eq!(
+            reparameterize(&topo, corner, 1),
+            Some(SurfacePoint::corner(1, 0))
+        );
+        let inside = SurfacePoint {
+            tri: 0,
+            v: 0.3,
+            w: 0.3,
+        };
+        assert_eq!(reparameterize(&topo, inside, 1), None);
+        assert_eq!(reparameterize(&topo, inside, 0), Some(inside));
+    }
+
+    #[test]
+    fn clamping_repairs_round_off_and_keeps_inside_points() {
+        let inside = DVec2::new(0.25, 0.5);
+        assert_eq!(clamp_to_triangle(inside), inside);
+        let q = clamp_to_triangle(DVec2::new(-1e-13, 0.5));
+        assert_eq!(q, DVec2::new(0.0, 0.5));
+        let q = clamp_to_triangle(DVec2::new(0.5 + 1e-13, 0.5 + 1e-13));
+        assert!(q.x >= 0.0 && q.y >= 0.0 && q.x + q.y <= 1.0, "{q}");
+    }
+}

@@ -209,9 +209,9 @@ pub(crate) fn closest_in_triangle<P: Point>(p: P, a: P, b: P, c: P) -> DVec2 {
         (gap.dot(gap), from + s * (to - from))
     };
     (0..3)
-    .map(|k| side(CORNERS[k], CORNERS[(k + 1) % 3]))
-    .min_by(|s, t| s.0.total_cmp(&t.0))
-    .map_or(DVec2::ZERO, |(_, q)| q)
+        .map(|k| side(CORNERS[k], CORNERS[(k + 1) % 3]))
+        .min_by(|s, t| s.0.total_cmp(&t.0))
+        .map_or(DVec2::ZERO, |(_, q)| q)
 }
 
 /// The control triangle of cell `cell` of level `level` and the parameters

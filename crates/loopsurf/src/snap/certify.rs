@@ -125,21 +125,21 @@ fn quadratic_minimum(u: DVec2, g: DVec2, (a, b, c): (f64, f64, f64)) -> Option<D
         g.dot(e) + 0.5 * (a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y)
     };
     (0..3)
-    .map(|k| (CORNERS[k], CORNERS[(k + 1) % 3]))
-    .map(|(from, to)| {
-        // Along from + τ (to − from), τ in [0, 1].
-        let e = to - from;
-        let slope = g.dot(e)
-            + (a * (from.x - u.x) * e.x
-                + b * ((from.x - u.x) * e.y + (from.y - u.y) * e.x)
-                + c * (from.y - u.y) * e.y);
-        let curvature = a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y;
-        let tau = if curvature > 0.0 {
-            (-slope / curvature).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        from + tau * e
-    })
-    .min_by(|x, y| model(*x).total_cmp(&model(*y)))
+        .map(|k| (CORNERS[k], CORNERS[(k + 1) % 3]))
+        .map(|(from, to)| {
+            // Along from + τ (to − from), τ in [0, 1].
+            let e = to - from;
+            let slope = g.dot(e)
+                + (a * (from.x - u.x) * e.x
+                    + b * ((from.x - u.x) * e.y + (from.y - u.y) * e.x)
+                    + c * (from.y - u.y) * e.y);
+            let curvature = a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y;
+            let tau = if curvature > 0.0 {
+                (-slope / curvature).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            from + tau * e
+        })
+        .min_by(|x, y| model(*x).total_cmp(&model(*y)))
 }
