@@ -5,6 +5,7 @@
 
 use super::remeshing::Remeshing;
 use crate::error::Error;
+use crate::geometry::area;
 use crate::Result;
 use rayon::prelude::*;
 
@@ -122,8 +123,7 @@ impl Remeshing<'_> {
                     let c = self.mesh.corners(h);
                     let p = c.map(|v| self.vertices[v as usize].x);
                     let s = c.iter().map(|&v| self.size[v as usize]).sum::<f64>() / 3.0;
-                    let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
-                    area / (0.25 * 3f64.sqrt() * s * s)
+                    area(p) / (0.25 * 3f64.sqrt() * s * s)
                 })
                 .sum::<f64>()
     }

@@ -5,6 +5,7 @@
 use super::connectivity::prev;
 use super::remeshing::Remeshing;
 use super::vertices::{Kind, Vertex};
+use crate::geometry::area_normal;
 use crate::topology::NONE;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -99,7 +100,7 @@ impl Remeshing<'_> {
             let ids = self.mesh.corners(h);
             let [a, b, c] = ids.map(|i| self.vertices[i as usize].x);
             let size = ids.iter().map(|&i| self.size[i as usize]).sum::<f64>() / 3.0;
-            let w = (b - a).cross(c - a).length() / (size * size);
+            let w = area_normal([a, b, c]).length() / (size * size);
             sum += w * (a + b + c) / 3.0;
             weight += w;
             face = self.face(h);

@@ -9,7 +9,7 @@ use super::sizing::Sizing;
 use super::vertices::{Kind, Placer, Vertex};
 use crate::error::{Error, Result};
 use crate::mesh::{Density, Mesher, SurfaceMesh};
-use crate::refine::SurfacePoint;
+use crate::parameters::SurfacePoint;
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -105,7 +105,9 @@ pub(super) fn start_from<'a>(surface: &'a Surface, start: &SurfaceMesh) -> Resul
 
 /// The control vertex a surface point sits at, if it sits at one.
 fn control_vertex(net: &crate::ControlNet, at: SurfacePoint) -> Option<u32> {
-    let weights = [1.0 - at.v - at.w, at.v, at.w];
-    let k = weights.iter().position(|&x| (x - 1.0).abs() <= 1e-12)?;
+    let k = at
+        .weights()
+        .iter()
+        .position(|&x| (x - 1.0).abs() <= 1e-12)?;
     Some(net.triangles()[at.tri as usize][k])
 }

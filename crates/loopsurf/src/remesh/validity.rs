@@ -4,7 +4,7 @@
 //! triangles, so that folds cannot creep in step by step).
 
 use super::remeshing::{Moved, Remeshing};
-use crate::geometry::max_cosine;
+use crate::geometry::{area_normal, max_cosine};
 use glam::DVec3;
 
 /// A triangle may tilt against the surface normal at its free vertices by
@@ -24,7 +24,7 @@ impl Remeshing<'_> {
     /// degenerate.
     fn alignment(&self, ids: [u32; 3], face: u32, moved: Moved) -> f64 {
         let p = ids.map(|v| self.point(v, moved));
-        let n = (p[1] - p[0]).cross(p[2] - p[0]);
+        let n = area_normal(p);
         let scale = (0..3)
             .map(|k| p[k].distance_squared(p[(k + 1) % 3]))
             .fold(0.0, f64::max);
