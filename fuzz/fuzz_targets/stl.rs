@@ -5,14 +5,14 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use loopsurf::io::{parse_mesh, ReadOptions};
+use loopsurf::io::{parse_mesh, ParseOptions};
 use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, Surface};
 
 fuzz_target!(|data: &[u8]| {
     // Plain, split polygons, and every repair (which parse untrusted data too).
     for (triangulate, repairs) in [(false, Repairs::default()), (true, Repairs::default()), (true, Repairs::all())] {
-        let opts = ReadOptions { triangulate, ..Default::default() };
+        let opts = ParseOptions { triangulate };
         let Ok(mesh) = parse_mesh(data.to_vec(), std::path::Path::new("input.stl"), &opts) else {
             continue;
         };

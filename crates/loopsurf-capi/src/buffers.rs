@@ -6,7 +6,6 @@
 use crate::ls_surface;
 use crate::status::{input, output, run, Fail};
 use crate::status::{LS_ERR_INTERNAL, LS_ERR_INVALID_ARGUMENT};
-use loopsurf::Surface;
 use std::ffi::{c_int, c_void};
 
 /// Copies `data` into a fresh `malloc` block (never NULL on success).
@@ -267,7 +266,7 @@ pub unsafe extern "C" fn ls_surface_save(
     run("ls_surface_save", || {
         let surface = &input(surface, "surface")?.0;
         let (bytes, n) = (output(bytes, "bytes")?, output(n, "n")?);
-        let stream = surface.to_bytes();
+        let stream = loopsurf::stream::to_bytes(surface);
         *bytes = malloc_copy(&stream)?;
         *n = stream.len();
         Ok(())
@@ -295,7 +294,7 @@ pub unsafe extern "C" fn ls_surface_load(
         input(bytes, "bytes")?;
         let out = output(out, "out")?;
         let stream = std::slice::from_raw_parts(bytes, n);
-        let surface = Surface::from_bytes(stream)?;
+        let surface = loopsurf::stream::from_bytes(stream)?;
         *out = Box::into_raw(Box::new(ls_surface(surface)));
         Ok(())
     })

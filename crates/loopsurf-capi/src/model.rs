@@ -16,7 +16,7 @@ use crate::status::{
 };
 use crate::surface::point;
 use loopsurf::model::{Curve, Face};
-use loopsurf::{Error, Surface};
+use loopsurf::{Error, LimitCurve, Surface};
 use std::ffi::c_int;
 
 /// An id of one of `count` things, or an out-of-range error naming the
@@ -312,7 +312,7 @@ pub unsafe extern "C" fn ls_curve_evaluate(
         let result = output(result, "result")?;
         let (c, cv) = curve_id(surface, curve)?;
         let t = parameter(t, curve, cv, "t")?;
-        let record = surface.curve_eval(c, t)?.record();
+        let record = LimitCurve::new(surface, c)?.eval(t)?.record();
         std::ptr::copy_nonoverlapping(record.as_ptr(), result, 9);
         Ok(())
     })
@@ -337,7 +337,7 @@ pub unsafe extern "C" fn ls_curve_length(
             parameter(t0, curve, cv, "t0")?,
             parameter(t1, curve, cv, "t1")?,
         );
-        *length = surface.curve_length(c, t0, t1)?;
+        *length = LimitCurve::new(surface, c)?.length(t0, t1)?;
         Ok(())
     })
 }
@@ -365,8 +365,8 @@ pub unsafe extern "C" fn ls_curve_param_at_length(
         }
         // With the curve and s checked, the one argument error left is s
         // beyond the curve's length.
-        *t = surface
-            .curve_param_at_length(c, s)
+        *t = LimitCurve::new(surface, c)
+            .and_then(|c| c.param_at_length(s))
             .map_err(|e| match e.root() {
                 Error::InvalidArgument(_) => {
                     Fail::new(LS_ERR_PARAMETER_OUT_OF_RANGE, e.to_string())
@@ -406,7 +406,7 @@ pub unsafe extern "C" fn ls_curve_surface_points(
         );
         let (c, cv) = curve_id(surface, curve)?;
         let t = parameter(t, curve, cv, "t")?;
-        let sides = surface.curve_surface_points(c, t)?;
+        let sides = LimitCurve::new(surface, c)?.surface_points(t)?;
         let (mut f, mut tr, mut p) = ([-1i32; 2], [-1i32; 2], [f64::NAN; 4]);
         for (i, (face, sp)) in sides.iter().take(2).enumerate() {
             f[i] = *face as i32;
@@ -450,7 +450,7 @@ pub unsafe extern "C" fn ls_curve_project(
         );
         let (c, cv) = curve_id(surface, curve)?;
         let guess = parameter(t_guess, curve, cv, "t_guess")?;
-        let snap = surface.curve_project(c, p, guess)?;
+        let snap = LimitCurve::new(surface, c)?.project(p, guess)?;
         *outs.0 = snap.t;
         std::ptr::copy_nonoverlapping(snap.point.to_array().as_ptr(), outs.1, 3);
         *outs.2 = snap.distance;
@@ -498,7 +498,7 @@ pub unsafe extern "C" fn ls_curve_snap(
         } else {
             tolerance
         };
-        let snap = surface.curve_closest_point_within(c, p, tolerance)?;
+        let snap = LimitCurve::new(surface, c)?.closest_point_within(p, tolerance)?;
         *outs.0 = snap.t;
         std::ptr::copy_nonoverlapping(snap.point.to_array().as_ptr(), outs.1, 3);
         *outs.2 = snap.distance;

@@ -5,7 +5,7 @@ use crate::status::{input, input_mut, output, run, run_void, Fail};
 use crate::status::{
     LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE, LS_ERR_NULL_POINTER,
 };
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
 use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, DVec3};
 use std::ffi::{c_char, c_int, CStr, OsStr};
@@ -308,7 +308,7 @@ pub unsafe extern "C" fn ls_net_folds(
                 format!("degrees {degrees}: must be between 0 and 180"),
             ));
         }
-        let folds = net.folds(degrees);
+        let folds = loopsurf::folds::folded_edges(net, degrees);
         let pairs: Vec<i32> = folds
             .iter()
             .flat_map(|f| f.edge)

@@ -34,7 +34,7 @@ pub unsafe extern "C" fn ls_project(
         let (v, w) = (*vw_guess, *vw_guess.add(1));
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
         let t = query(surface, tri_guess, v, w)?;
-        write_snap(outs, surface.project(p, t, v, w)?);
+        write_snap(outs, loopsurf::snap::project(surface, p, t, v, w)?);
         Ok(())
     })
 }

@@ -75,7 +75,7 @@ pub unsafe extern "C" fn ls_snap_certified(
         };
         let result = output(result, "result")?;
         known_size::<ls_snap_result>((*result).struct_size, "result")?;
-        let s = surface.closest_point_within(p, tolerance)?;
+        let s = loopsurf::snap::closest_point_within(surface, p, tolerance)?;
         *result = ls_snap_result {
             struct_size: (*result).struct_size,
             tri: s.tri as i32,

@@ -89,8 +89,7 @@ pub unsafe extern "C" fn ls_surface_folded_patches(
     run("ls_surface_folded_patches", || {
         let surface = &input(surface, "surface")?.0;
         let (n, triangles) = (output(n, "n")?, output(triangles, "triangles")?);
-        let folded: Vec<i32> = surface
-            .folded_patches()
+        let folded: Vec<i32> = loopsurf::folds::folded_patches(surface)
             .into_iter()
             .map(|t| t as i32)
             .collect();
@@ -290,7 +289,7 @@ pub unsafe extern "C" fn ls_snap(
         let surface = &input(surface, "surface")?.0;
         let p = point(xyz)?;
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
-        write_snap(outs, surface.closest_point(p)?);
+        write_snap(outs, loopsurf::snap::closest_point(surface, p)?);
         Ok(())
     })
 }
@@ -317,7 +316,7 @@ pub unsafe extern "C" fn ls_snap_guess(
         let (v, w) = (*vw_guess, *vw_guess.add(1));
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
         let t = query(surface, tri_guess, v, w)?;
-        write_snap(outs, surface.snap_near(p, t, v, w)?);
+        write_snap(outs, loopsurf::snap::snap_near(surface, p, t, v, w)?);
         Ok(())
     })
 }

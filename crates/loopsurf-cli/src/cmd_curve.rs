@@ -4,7 +4,7 @@
 
 use crate::curved_output;
 use crate::input::{Input, SurfaceOptions};
-use loopsurf::io::{self, LagrangeMesh, ReadOptions};
+use loopsurf::io::{self, LagrangeMesh, ParseOptions};
 use loopsurf::mesh::high_order::{onto_surface, CurvedMesh, DEFAULT_MAX_MOVE};
 use loopsurf::{DVec3, Error};
 use std::path::{Path, PathBuf};
@@ -138,7 +138,7 @@ fn read_given(path: &Path) -> Result<LagrangeMesh, Error> {
         Some(curved_output::CurvedFormat::Msh) => io::read_msh(path)?.to_lagrange(),
         Some(curved_output::CurvedFormat::Vtu) => io::read_vtu(path)?.to_lagrange(),
         None => {
-            let data = io::read_mesh(path, &ReadOptions::default())?;
+            let data = io::read_mesh(path, &ParseOptions::default())?;
             let n = data.points.len() as i64;
             let mut triangles = Vec::with_capacity(3 * data.tris.len());
             for (t, tri) in data.tris.iter().enumerate() {

@@ -6,7 +6,7 @@
 
 use crate::input::{Input, SurfaceOptions};
 use crate::queries;
-use loopsurf::Error;
+use loopsurf::{Error, LimitCurve};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -29,7 +29,7 @@ pub fn run(args: Args) -> Result<(), Error> {
             "edge t",
             |[c, t]| {
                 let c = whole(c, "edge")?;
-                Ok(surface.curve_eval(c, t)?.record())
+                Ok(LimitCurve::new(&surface, c)?.eval(t)?.record())
             },
             |out, record| queries::write_numbers(out, &record),
         );

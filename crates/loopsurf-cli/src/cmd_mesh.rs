@@ -323,7 +323,7 @@ fn write_params(path: &Path, mesh: &SurfaceMesh) -> Result<(), Error> {
 }
 
 /// Says on stderr where triangles below 10° lie on patches of the surface
-/// that fold over themselves ([`Surface::is_folded`]): no mesh of a fold
+/// that fold over themselves ([`loopsurf::folds::is_folded`]): no mesh of a fold
 /// is good, and the user should look at the control net there rather than
 /// at the mesher. Only the control triangles under such triangles are
 /// checked, so a good mesh costs nothing.
@@ -339,7 +339,7 @@ fn warn_of_surface_folds(surface: &Surface, mesh: &SurfaceMesh) {
     suspects.dedup();
     let folded: Vec<usize> = suspects
         .into_iter()
-        .filter(|&t| surface.is_folded(t))
+        .filter(|&t| loopsurf::folds::is_folded(surface, t))
         .collect();
     if folded.is_empty() {
         return;

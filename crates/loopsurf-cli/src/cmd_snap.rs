@@ -6,6 +6,7 @@
 
 use crate::input::{Input, SurfaceOptions};
 use crate::queries;
+use loopsurf::snap;
 use loopsurf::{DVec3, Error};
 
 #[derive(clap::Args, Debug)]
@@ -29,10 +30,10 @@ pub fn run(args: Args) -> Result<(), Error> {
     let surface = args.surface.build(&net)?;
     let certificate = args.certificate;
     // A bad tolerance is reported before any input is read.
-    surface.closest_point_within(net.points()[0], args.tolerance)?;
+    snap::closest_point_within(&surface, net.points()[0], args.tolerance)?;
     queries::run(
         "x y z",
-        |[x, y, z]| surface.closest_point_within(DVec3::new(x, y, z), args.tolerance),
+        |[x, y, z]| snap::closest_point_within(&surface, DVec3::new(x, y, z), args.tolerance),
         |out, s| {
             write!(out, "{} ", s.tri)?;
             let [x, y, z] = s.point.to_array();

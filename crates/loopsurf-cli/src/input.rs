@@ -1,7 +1,7 @@
 //! The mesh argument every command shares: a file or a built-in example,
 //! plus the hard-feature flags.
 
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
 use loopsurf::{examples, ControlNet, Error, Surface, SurfaceMode};
 use std::path::{Path, PathBuf};
 
@@ -139,7 +139,7 @@ impl Input {
 /// defined, but the fin it makes there spoils any mesh of it, and the user
 /// should know why before looking at one.
 fn warn_of_folds(net: &ControlNet, name: &str) {
-    let folds = net.folds(FOLD_DEGREES);
+    let folds = loopsurf::folds::folded_edges(net, FOLD_DEGREES);
     let Some(worst) = folds.first() else { return };
     let [a, b] = worst.edge;
     let [s, t] = worst.triangles;

@@ -11,7 +11,7 @@
 //! Throughput is in queries per second.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use loopsurf::{ControlNet, DVec3, Surface};
+use loopsurf::{ControlNet, DVec3, LimitCurve, Surface};
 use std::path::PathBuf;
 
 struct Lcg(u64);
@@ -46,15 +46,16 @@ fn curves(c: &mut Criterion) {
     let points: Vec<(usize, f64, DVec3)> = queries
         .iter()
         .map(|&(c, t)| {
-            let x = surface.curve_eval(c, t).unwrap().x;
+            let x = LimitCurve::new(&surface, c).unwrap().eval(t).unwrap().x;
             let d = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
             (c, t, x + 1e-3 * diagonal * d)
         })
         .collect();
     let lengths: Vec<f64> = (0..model.curves().len())
         .map(|c| {
-            surface
-                .curve_length(c, 0.0, model.curves()[c].len() as f64)
+            LimitCurve::new(&surface, c)
+                .unwrap()
+                .length(0.0, model.curves()[c].len() as f64)
                 .unwrap()
         })
         .collect();
@@ -69,7 +70,7 @@ fn curves(c: &mut Criterion) {
         b.iter(|| {
             one.install(|| {
                 for &(c, t) in &queries {
-                    std::hint::black_box(surface.curve_eval(c, t).unwrap());
+                    std::hint::black_box(LimitCurve::new(&surface, c).unwrap().eval(t).unwrap());
                 }
             })
         })
@@ -79,7 +80,12 @@ fn curves(c: &mut Criterion) {
             one.install(|| {
                 for &(c, t) in &queries {
                     let s = lengths[c] * t / model.curves()[c].len() as f64;
-                    std::hint::black_box(surface.curve_param_at_length(c, s).unwrap());
+                    std::hint::black_box(
+                        LimitCurve::new(&surface, c)
+                            .unwrap()
+                            .param_at_length(s)
+                            .unwrap(),
+                    );
                 }
             })
         })
@@ -88,7 +94,12 @@ fn curves(c: &mut Criterion) {
         b.iter(|| {
             one.install(|| {
                 for &(c, _, p) in &points {
-                    std::hint::black_box(surface.curve_closest_point(c, p).unwrap());
+                    std::hint::black_box(
+                        LimitCurve::new(&surface, c)
+                            .unwrap()
+                            .closest_point(p)
+                            .unwrap(),
+                    );
                 }
             })
         })
@@ -98,7 +109,12 @@ fn curves(c: &mut Criterion) {
             one.install(|| {
                 for &(c, t, p) in &points {
                     let n = model.curves()[c].len() as f64;
-                    std::hint::black_box(surface.curve_project(c, p, (t + 0.05).min(n)).unwrap());
+                    std::hint::black_box(
+                        LimitCurve::new(&surface, c)
+                            .unwrap()
+                            .project(p, (t + 0.05).min(n))
+                            .unwrap(),
+                    );
                 }
             })
         })

@@ -17,6 +17,7 @@
 //! Throughput is in projections per second.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Snap, Surface};
 use std::path::PathBuf;
 
@@ -58,9 +59,7 @@ fn walks(surface: &Surface, diagonal: f64, rng: &mut Lcg) -> Vec<(Snap, Vec<DVec
         .map(|_| {
             let t = (rng.next() * triangles as f64) as usize;
             let (v, w) = (0.1 + 0.3 * rng.next(), 0.1 + 0.3 * rng.next());
-            let start = surface
-                .closest_point(surface.point(t, v, w).unwrap())
-                .unwrap();
+            let start = snap::closest_point(surface, surface.point(t, v, w).unwrap()).unwrap();
             let mut here = start;
             let mut heading = direction(rng);
             let points = (0..QUERIES / WALKS)
@@ -71,8 +70,7 @@ fn walks(surface: &Surface, diagonal: f64, rng: &mut Lcg) -> Vec<(Snap, Vec<DVec
                     heading = (heading + 0.3 * direction(rng))
                         .reject_from(n)
                         .normalize_or(n.any_orthonormal_vector());
-                    here = surface
-                        .closest_point(here.point + 1e-3 * diagonal * heading)
+                    here = snap::closest_point(surface, here.point + 1e-3 * diagonal * heading)
                         .unwrap();
                     query
                 })
@@ -121,7 +119,7 @@ fn project(c: &mut Criterion) {
                 for (start, points) in &walks {
                     let mut guess = *start;
                     for &p in points {
-                        guess = surface.project(p, guess.tri, guess.v, guess.w).unwrap();
+                        guess = snap::project(&surface, p, guess.tri, guess.v, guess.w).unwrap();
                         sum += guess.distance;
                     }
                 }
@@ -132,7 +130,7 @@ fn project(c: &mut Criterion) {
             b.iter(|| {
                 neighbours
                     .iter()
-                    .map(|&(p, t, v, w)| surface.project(p, t, v, w).unwrap().distance)
+                    .map(|&(p, t, v, w)| snap::project(&surface, p, t, v, w).unwrap().distance)
                     .sum::<f64>()
             })
         });

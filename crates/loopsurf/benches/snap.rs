@@ -6,6 +6,7 @@
 //! certificate costs. Index build time is separate.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Surface};
 use std::path::PathBuf;
 
@@ -39,7 +40,7 @@ fn snap(c: &mut Criterion) {
         };
         let surface = Surface::new(&net).unwrap();
         let start = std::time::Instant::now();
-        surface.closest_point(DVec3::ZERO).unwrap(); // builds the index
+        snap::closest_point(&surface, DVec3::ZERO).unwrap(); // builds the index
         eprintln!(
             "{name}: snap index built in {:.1} ms",
             start.elapsed().as_secs_f64() * 1e3
@@ -76,7 +77,7 @@ fn snap(c: &mut Criterion) {
                 single.install(|| {
                     in_box
                         .iter()
-                        .map(|&p| surface.closest_point(p).unwrap().distance)
+                        .map(|&p| snap::closest_point(&surface, p).unwrap().distance)
                         .sum::<f64>()
                 })
             })
@@ -85,7 +86,7 @@ fn snap(c: &mut Criterion) {
             b.iter(|| {
                 single.install(|| {
                     near.iter()
-                        .map(|&p| surface.closest_point(p).unwrap().distance)
+                        .map(|&p| snap::closest_point(&surface, p).unwrap().distance)
                         .sum::<f64>()
                 })
             })
@@ -95,7 +96,11 @@ fn snap(c: &mut Criterion) {
             b.iter(|| {
                 single.install(|| {
                     near.iter()
-                        .map(|&p| surface.closest_point_within(p, 1e-6).unwrap().distance)
+                        .map(|&p| {
+                            snap::closest_point_within(&surface, p, 1e-6)
+                                .unwrap()
+                                .distance
+                        })
                         .sum::<f64>()
                 })
             })
@@ -103,9 +108,9 @@ fn snap(c: &mut Criterion) {
         group.bench_function("c_snap_near_walk", |b| {
             b.iter(|| {
                 single.install(|| {
-                    let mut hint = surface.closest_point(walk[0]).unwrap();
+                    let mut hint = snap::closest_point(&surface, walk[0]).unwrap();
                     for &p in &walk[1..] {
-                        hint = surface.snap_near(p, hint.tri, hint.v, hint.w).unwrap();
+                        hint = snap::snap_near(&surface, p, hint.tri, hint.v, hint.w).unwrap();
                     }
                     hint.distance
                 })

@@ -6,6 +6,7 @@
 //!
 //!     cargo run --release -p loopsurf --example build_scale -- NET
 
+use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Surface};
 use std::time::Instant;
 
@@ -39,7 +40,7 @@ fn main() {
     let made = surface.memory_bytes() / n;
     let t = Instant::now();
     let centre = net.points().iter().sum::<DVec3>() / net.points().len() as f64;
-    surface.closest_point(centre).expect("a finite point snaps");
+    snap::closest_point(&surface, centre).expect("a finite point snaps");
     let snap = t.elapsed().as_secs_f64();
     println!(
         "{path}: {n} triangles; read {read:.2} s, build {build:.2} s ({built} B per triangle), \

@@ -24,13 +24,15 @@
 
 use crate::error::{Error, Result};
 use crate::features::VertexKind;
-use crate::model::Curve;
+use crate::model::{runs, Curve};
 use crate::parameters::{vertex_point, SurfacePoint, CORNERS};
-use crate::surface::Surface;
+use crate::snap::DEFAULT_TOLERANCE;
+use crate::surface::{Derived, Surface, SurfaceMode, PARAMETER_TOLERANCE};
 use crate::topology::NONE;
 use glam::DVec3;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
+use std::sync::OnceLock;
 
 /// Position and first and second derivatives with respect to t.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,21 +77,76 @@ fn bspline_basis(s: f64) -> [[f64; 4]; 3] {
     ]
 }
 
-impl Surface {
-    /// The curve `curve` of [`Surface::model`], checked.
-    pub(crate) fn curve(&self, curve: usize) -> Result<&Curve> {
-        let n = self.model().curves().len();
-        self.model().curves().get(curve).ok_or_else(|| {
+/// One curve of a surface's model ([`Surface::model`]) as a curve in
+/// space: its limit, arc length and projection. A handle is cheap to make
+/// (`LimitCurve::new(&surface, c)?.eval(t)`); the lengths it integrates
+/// are kept with the surface, so a later handle on the same curve finds
+/// them.
+#[derive(Clone, Copy)]
+pub struct LimitCurve<'s> {
+    surface: &'s Surface,
+    index: usize,
+    curve: &'s Curve,
+    /// This curve's unit segment lengths, integrated on first use.
+    lengths: &'s OnceLock<Vec<f64>>,
+}
+
+/// Per model curve, its unit segment lengths once integrated: placing many
+/// points on one curve would otherwise integrate it again for each. The
+/// surface keeps them ([`Derived`]) without knowing what they are.
+struct CurveLengths(Vec<OnceLock<Vec<f64>>>);
+
+impl Derived for CurveLengths {
+    fn memory_bytes(&self) -> usize {
+        self.0.capacity() * std::mem::size_of::<OnceLock<Vec<f64>>>()
+            + self
+                .0
+                .iter()
+                .filter_map(OnceLock::get)
+                .map(|t| t.capacity() * std::mem::size_of::<f64>())
+                .sum::<usize>()
+    }
+}
+
+impl<'s> LimitCurve<'s> {
+    /// Curve `index` of `surface`'s model, checked.
+    pub fn new(surface: &'s Surface, index: usize) -> Result<LimitCurve<'s>> {
+        let curves = surface.model().curves();
+        let curve = curves.get(index).ok_or_else(|| {
             Error::InvalidArgument(format!(
-                "curve {curve}: out of range (the model has {n} curves)"
+                "curve {index}: out of range (the model has {} curves)",
+                curves.len()
             ))
+        })?;
+        let lengths = surface.derived(|s| {
+            CurveLengths(
+                (0..s.model().curves().len())
+                    .map(|_| OnceLock::new())
+                    .collect(),
+            )
+        });
+        Ok(LimitCurve {
+            surface,
+            index,
+            curve,
+            lengths: &lengths.0[index],
         })
     }
 
+    /// Its number in the model.
+    pub fn index(&self) -> usize {
+        self.index
+    }
+
+    /// The model curve: its chain of control vertices, edges and faces.
+    pub fn curve(&self) -> &'s Curve {
+        self.curve
+    }
+
     /// t checked against [0, n] (round-off beyond is clamped).
-    fn curve_parameter(&self, curve: &Curve, t: f64) -> Result<f64> {
-        let n = curve.len() as f64;
-        let slack = crate::surface::PARAMETER_TOLERANCE * n.max(1.0);
+    fn parameter(&self, t: f64) -> Result<f64> {
+        let n = self.curve.len() as f64;
+        let slack = PARAMETER_TOLERANCE * n.max(1.0);
         if !t.is_finite() || t < -slack || t > n + slack {
             return Err(Error::InvalidArgument(format!(
                 "curve parameter t = {t}: outside [0, {n}]"
@@ -100,8 +157,9 @@ impl Surface {
 
     /// Chain point j of a curve, extended past open ends by the phantom
     /// points 2P₀ − P₁ and 2Pₙ − Pₙ₋₁, and periodically around a loop.
-    fn chain_point(&self, curve: &Curve, j: isize) -> DVec3 {
-        let p = |i: usize| self.net().points()[curve.chain[i] as usize];
+    fn chain_point(&self, j: isize) -> DVec3 {
+        let curve = self.curve;
+        let p = |i: usize| self.surface.net().points()[curve.chain[i] as usize];
         let n = curve.len() as isize;
         if curve.is_closed() {
             return p(j.rem_euclid(n) as usize);
@@ -116,21 +174,23 @@ impl Surface {
     }
 
     /// Whether chain vertex `j` of an open curve is a dart tip.
-    fn is_dart_tip(&self, curve: &Curve, j: usize) -> bool {
+    fn is_dart_tip(&self, j: usize) -> bool {
+        let curve = self.curve;
         !curve.is_closed()
             && (j == 0 || j == curve.len())
             && self
+                .surface
                 .net()
                 .features()
-                .vertex_kind(self.net().topology(), curve.chain[j] as usize)
+                .vertex_kind(self.surface.net().topology(), curve.chain[j] as usize)
                 == VertexKind::Dart
     }
 
     /// X(t), X′(t), X″(t) of curve `curve` of the model (see the module
     /// doc). t ∈ [0, n] for n control edges.
-    pub fn curve_eval(&self, curve: usize, t: f64) -> Result<CurveEvaluation> {
-        let c = self.curve(curve)?;
-        let t = self.curve_parameter(c, t)?;
+    pub fn eval(&self, t: f64) -> Result<CurveEvaluation> {
+        let c = self.curve;
+        let t = self.parameter(t)?;
         let n = c.len();
         let k = (t.floor() as usize).min(n - 1);
         let s = t - k as f64;
@@ -142,7 +202,7 @@ impl Surface {
             None
         };
         let mut e = match j {
-            Some(j) if self.is_dart_tip(c, j) => {
+            Some(j) if self.is_dart_tip(j) => {
                 let x = self.limit_of_vertex(c.chain[j]);
                 return Ok(CurveEvaluation {
                     x,
@@ -153,9 +213,9 @@ impl Surface {
             }
             Some(j) => {
                 let (a, p, b) = (
-                    self.chain_point(c, j as isize - 1),
-                    self.chain_point(c, j as isize),
-                    self.chain_point(c, j as isize + 1),
+                    self.chain_point(j as isize - 1),
+                    self.chain_point(j as isize),
+                    self.chain_point(j as isize + 1),
                 );
                 CurveEvaluation {
                     x: (a + 4.0 * p + b) / 6.0,
@@ -164,10 +224,10 @@ impl Surface {
                     at_special_vertex: false,
                 }
             }
-            None if self.near_dart(c, k) => self.curve_on_surface(c, k, s)?,
+            None if self.near_dart(k) => self.curve_on_surface(k, s)?,
             None => {
                 let basis = bspline_basis(s);
-                let pts = [-1isize, 0, 1, 2].map(|d| self.chain_point(c, k as isize + d));
+                let pts = [-1isize, 0, 1, 2].map(|d| self.chain_point(k as isize + d));
                 let comb = |w: &[f64; 4]| (0..4).map(|i| w[i] * pts[i]).sum::<DVec3>();
                 CurveEvaluation {
                     x: comb(&basis[0]),
@@ -177,10 +237,10 @@ impl Surface {
                 }
             }
         };
-        if self.mode() == crate::surface::SurfaceMode::Displacement {
+        if self.surface.mode() == SurfaceMode::Displacement {
             let (da, db) = (
-                self.displacement_of(c.chain[k]),
-                self.displacement_of(c.chain[k + 1]),
+                self.surface.displacement_of(c.chain[k]),
+                self.surface.displacement_of(c.chain[k + 1]),
             );
             e.x += (1.0 - s) * da + s * db;
             e.dx += db - da;
@@ -189,16 +249,16 @@ impl Surface {
     }
 
     /// Whether segment k's B-spline support holds a dart tip.
-    fn near_dart(&self, c: &Curve, k: usize) -> bool {
-        let n = c.len();
-        (k <= 1 && self.is_dart_tip(c, 0)) || (k + 2 >= n && self.is_dart_tip(c, n))
+    fn near_dart(&self, k: usize) -> bool {
+        let n = self.curve.len();
+        (k <= 1 && self.is_dart_tip(0)) || (k + 2 >= n && self.is_dart_tip(n))
     }
 
     /// The approximating surface's limit position of control vertex v.
     fn limit_of_vertex(&self, v: u32) -> DVec3 {
         // The surface at a triangle corner is the vertex's exact limit.
-        vertex_point(self.net().topology(), v)
-            .and_then(|p| self.eval(p.tri as usize, p.v, p.w).ok())
+        vertex_point(self.surface.net().topology(), v)
+            .and_then(|p| self.surface.eval(p.tri as usize, p.v, p.w).ok())
             .map_or(DVec3::NAN, |e| e.x)
     }
 
@@ -206,12 +266,12 @@ impl Surface {
     /// only) triangle along control edge k: the directional derivatives
     /// along the edge's direction in (v, w). Without displacement (added
     /// by the caller).
-    fn curve_on_surface(&self, c: &Curve, k: usize, s: f64) -> Result<CurveEvaluation> {
-        let (tri, a, b) = self.edge_in_triangle(c, k);
+    fn curve_on_surface(&self, k: usize, s: f64) -> Result<CurveEvaluation> {
+        let (tri, a, b) = self.edge_in_triangle(k);
         let (pa, pb) = (CORNERS[a], CORNERS[b]);
         let q = pa + s * (pb - pa);
         let d = pb - pa;
-        let e = self.eval_approximating(tri, q.x, q.y);
+        let e = self.surface.eval_approximating(tri, q.x, q.y);
         Ok(CurveEvaluation {
             x: e.x,
             dx: d.x * e.xv + d.y * e.xw,
@@ -222,8 +282,9 @@ impl Surface {
 
     /// A triangle holding control edge k of the curve and the corners of
     /// chain[k] and chain[k + 1] in it.
-    pub(crate) fn edge_in_triangle(&self, c: &Curve, k: usize) -> (usize, usize, usize) {
-        let topo = self.net().topology();
+    fn edge_in_triangle(&self, k: usize) -> (usize, usize, usize) {
+        let c = self.curve;
+        let topo = self.surface.net().topology();
         let [t0, t1] = topo.edge_triangles()[c.edges[k] as usize];
         let tri = if t0 != NONE { t0 } else { t1 };
         let corners = topo.triangles()[tri as usize];
@@ -255,29 +316,28 @@ const GAUSS: [(f64, f64); 5] = [
     (0.973_906_528_517_171_7, 0.066_671_344_308_688_14),
 ];
 
-impl Surface {
+impl<'s> LimitCurve<'s> {
     /// The arc length of curve `curve` between parameters t0 and t1
     /// (negative when t1 < t0), by adaptive Gauss–Legendre quadrature of
     /// |X′| to 1e-13 relative per unit segment.
-    pub fn curve_length(&self, curve: usize, t0: f64, t1: f64) -> Result<f64> {
-        let c = self.curve(curve)?;
-        let (a, b) = (self.curve_parameter(c, t0)?, self.curve_parameter(c, t1)?);
+    pub fn length(&self, t0: f64, t1: f64) -> Result<f64> {
+        let c = self.curve;
+        let (a, b) = (self.parameter(t0)?, self.parameter(t1)?);
         let (lo, hi, sign) = if a <= b { (a, b, 1.0) } else { (b, a, -1.0) };
         let n = c.len() as f64;
-        let tip = |t: f64| {
-            (t == 0.0 && self.is_dart_tip(c, 0)) || (t == n && self.is_dart_tip(c, c.len()))
-        };
+        let tip =
+            |t: f64| (t == 0.0 && self.is_dart_tip(0)) || (t == n && self.is_dart_tip(c.len()));
         let mut total = 0.0;
         let mut k = lo.floor();
         while k < hi {
             let (x, y) = (lo.max(k), hi.min(k + 1.0));
             if y > x {
                 total += if tip(x) {
-                    self.length_to_tip(curve, x, y)?
+                    self.length_to_tip(x, y)?
                 } else if tip(y) {
-                    self.length_to_tip(curve, y, x)?
+                    self.length_to_tip(y, x)?
                 } else {
-                    self.segment_length(curve, x, y, self.length_floor(), 0)?
+                    self.segment_length(x, y, self.length_floor(), 0)?
                 };
             }
             k += 1.0;
@@ -291,8 +351,8 @@ impl Surface {
     /// interval is cut into halves towards the tip, each smooth on its own
     /// scale, until the rest (bounded by its chord's multiple, taken as its
     /// chord) is below round-off of the sum.
-    fn length_to_tip(&self, curve: usize, tip: f64, other: f64) -> Result<f64> {
-        let x_tip = self.curve_eval(curve, tip)?.x;
+    fn length_to_tip(&self, tip: f64, other: f64) -> Result<f64> {
+        let x_tip = self.eval(tip)?.x;
         let mut total = 0.0;
         let mut far = other;
         for _ in 0..200 {
@@ -300,9 +360,9 @@ impl Surface {
             let (a, b) = if near < far { (near, far) } else { (far, near) };
             // Each piece only needs to be good relative to the sum so far.
             let floor = self.length_floor().max(1e-15 * total);
-            total += self.segment_length(curve, a, b, floor, 0)?;
+            total += self.segment_length(a, b, floor, 0)?;
             far = near;
-            let rest = (self.curve_eval(curve, far)?.x - x_tip).length();
+            let rest = (self.eval(far)?.x - x_tip).length();
             if rest <= 1e-14 * total {
                 return Ok(total + rest);
             }
@@ -314,28 +374,28 @@ impl Surface {
     /// agree with the whole to 1e-13 relative or to `floor` absolute (the
     /// round-off of positions, below which pieces near a dart tip never
     /// agree better).
-    fn segment_length(&self, curve: usize, a: f64, b: f64, floor: f64, depth: u32) -> Result<f64> {
-        let whole = self.gauss(curve, a, b)?;
+    fn segment_length(&self, a: f64, b: f64, floor: f64, depth: u32) -> Result<f64> {
+        let whole = self.gauss(a, b)?;
         let m = 0.5 * (a + b);
-        let halves = self.gauss(curve, a, m)? + self.gauss(curve, m, b)?;
+        let halves = self.gauss(a, m)? + self.gauss(m, b)?;
         if (whole - halves).abs() <= (1e-13 * halves.abs()).max(floor) || depth >= 40 {
             return Ok(halves);
         }
-        Ok(self.segment_length(curve, a, m, 0.5 * floor, depth + 1)?
-            + self.segment_length(curve, m, b, 0.5 * floor, depth + 1)?)
+        Ok(self.segment_length(a, m, 0.5 * floor, depth + 1)?
+            + self.segment_length(m, b, 0.5 * floor, depth + 1)?)
     }
 
     /// The absolute round-off of lengths on this surface.
     fn length_floor(&self) -> f64 {
-        1e-15 * self.net().bbox_diagonal()
+        1e-15 * self.surface.net().bbox_diagonal()
     }
 
-    fn gauss(&self, curve: usize, a: f64, b: f64) -> Result<f64> {
+    fn gauss(&self, a: f64, b: f64) -> Result<f64> {
         let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
         let mut sum = 0.0;
         for (x, w) in GAUSS {
-            sum += w * self.curve_eval(curve, m - h * x)?.dx.length();
-            sum += w * self.curve_eval(curve, m + h * x)?.dx.length();
+            sum += w * self.eval(m - h * x)?.dx.length();
+            sum += w * self.eval(m + h * x)?.dx.length();
         }
         Ok(h * sum)
     }
@@ -344,10 +404,9 @@ impl Surface {
     /// (0 ≤ s ≤ its length), so a mesher can place equally spaced points:
     /// the segment by cumulative lengths, then Newton on the length inside
     /// it, safeguarded by bisection.
-    pub fn curve_param_at_length(&self, curve: usize, s: f64) -> Result<f64> {
-        let c = self.curve(curve)?;
-        let n = c.len();
-        let table = self.segment_lengths(curve)?;
+    pub fn param_at_length(&self, s: f64) -> Result<f64> {
+        let n = self.curve.len();
+        let table = self.segment_lengths()?;
         let mut cumulative = 0.0;
         for k in 0..n {
             let seg = table[k];
@@ -355,14 +414,15 @@ impl Surface {
                 let target = s - cumulative;
                 if !(target >= -1e-12 * seg && target <= seg * (1.0 + 1e-12)) || !s.is_finite() {
                     return Err(Error::InvalidArgument(format!(
-                        "arc length {s}: outside [0, {}] of curve {curve}",
-                        cumulative + seg
+                        "arc length {s}: outside [0, {}] of curve {}",
+                        cumulative + seg,
+                        self.index
                     )));
                 }
                 let (mut lo, mut hi) = (k as f64, k as f64 + 1.0);
                 let mut t = lo + target / seg.max(f64::MIN_POSITIVE);
                 for _ in 0..60 {
-                    let f = self.curve_length(curve, k as f64, t)? - target;
+                    let f = self.length(k as f64, t)? - target;
                     if f.abs() <= 1e-14 * seg.max(f64::MIN_POSITIVE) {
                         break;
                     }
@@ -371,7 +431,7 @@ impl Surface {
                     } else {
                         lo = t;
                     }
-                    let speed = self.curve_eval(curve, t)?.dx.length();
+                    let speed = self.eval(t)?.dx.length();
                     let newton = t - f / speed;
                     t = if speed > 0.0 && newton > lo && newton < hi {
                         newton
@@ -386,31 +446,28 @@ impl Surface {
         unreachable!("a curve has at least one control edge")
     }
 
-    /// The length of every unit segment of curve `curve`, computed on first
-    /// use and kept with the surface (placing many points on one curve
-    /// would otherwise integrate it again for each).
-    fn segment_lengths(&self, curve: usize) -> Result<&[f64]> {
-        let slots = self.curve_lengths_cache();
-        if let Some(table) = slots[curve].get() {
+    /// The length of every unit segment, computed on first use and kept
+    /// with the surface ([`CurveLengths`]).
+    fn segment_lengths(&self) -> Result<&'s [f64]> {
+        if let Some(table) = self.lengths.get() {
             return Ok(table);
         }
-        let n = self.curve(curve)?.len();
-        let table = (0..n)
-            .map(|k| self.curve_length(curve, k as f64, k as f64 + 1.0))
+        let table = (0..self.curve.len())
+            .map(|k| self.length(k as f64, k as f64 + 1.0))
             .collect::<Result<Vec<f64>>>()?;
-        Ok(slots[curve].get_or_init(|| table))
+        Ok(self.lengths.get_or_init(|| table))
     }
 
     /// The surface points of curve parameter t: (face, triangle, v, w) on
     /// each side of the curve (one for a boundary curve; a dart's slit has
     /// its face twice), in the order of [`Curve::faces`].
-    pub fn curve_surface_points(&self, curve: usize, t: f64) -> Result<Vec<(u32, SurfacePoint)>> {
-        let c = self.curve(curve)?;
-        let t = self.curve_parameter(c, t)?;
+    pub fn surface_points(&self, t: f64) -> Result<Vec<(u32, SurfacePoint)>> {
+        let c = self.curve;
+        let t = self.parameter(t)?;
         let k = (t.floor() as usize).min(c.len() - 1);
         let s = t - k as f64;
-        let topo = self.net().topology();
-        let face_of = self.model().face_of_triangle();
+        let topo = self.surface.net().topology();
+        let face_of = self.surface.model().face_of_triangle();
         let mut out = Vec::new();
         for tri in topo.edge_triangles()[c.edges[k] as usize] {
             if tri == NONE {
@@ -420,7 +477,7 @@ impl Surface {
             let uv = |v: u32| CORNERS[corners.iter().position(|&x| x == v).unwrap_or(0)];
             let (a, b) = (uv(c.chain[k]), uv(c.chain[k + 1]));
             let q = a + s * (b - a);
-            let forward = crate::model::runs(topo, tri, c.chain[k], c.chain[k + 1]);
+            let forward = runs(topo, tri, c.chain[k], c.chain[k + 1]);
             out.push((
                 usize::from(!forward),
                 face_of[tri as usize],
@@ -439,16 +496,15 @@ impl Surface {
     /// (X − p)·X′ = 0 with step halving on the distance, across segments
     /// (around a closed loop too). Fast, and proves nothing
     /// (`lower_bound` = 0).
-    pub fn curve_project(&self, curve: usize, p: DVec3, t: f64) -> Result<CurveSnap> {
-        let c = self.curve(curve)?;
+    pub fn project(&self, p: DVec3, t: f64) -> Result<CurveSnap> {
         if !p.is_finite() {
             return Err(Error::InvalidArgument(format!(
                 "point {:?} is not finite",
                 p.to_array()
             )));
         }
-        let t = self.curve_parameter(c, t)?;
-        let (t, point) = self.descend_curve(curve, c, p, t)?;
+        let t = self.parameter(t)?;
+        let (t, point) = self.descend(p, t)?;
         Ok(CurveSnap {
             t,
             point,
@@ -458,7 +514,8 @@ impl Surface {
     }
 
     /// Newton descent of |X(t) − p|² from t, returning the local minimiser.
-    fn descend_curve(&self, curve: usize, c: &Curve, p: DVec3, mut t: f64) -> Result<(f64, DVec3)> {
+    fn descend(&self, p: DVec3, mut t: f64) -> Result<(f64, DVec3)> {
+        let c = self.curve;
         let n = c.len() as f64;
         let wrap = |t: f64| {
             if c.is_closed() {
@@ -467,7 +524,7 @@ impl Surface {
                 t.clamp(0.0, n)
             }
         };
-        let mut e = self.curve_eval(curve, t)?;
+        let mut e = self.eval(t)?;
         let mut f = (e.x - p).length_squared();
         for _ in 0..100 {
             let g = (e.x - p).dot(e.dx);
@@ -484,7 +541,7 @@ impl Surface {
             let mut moved = false;
             for _ in 0..40 {
                 let t1 = wrap(t + step);
-                let e1 = self.curve_eval(curve, t1)?;
+                let e1 = self.eval(t1)?;
                 let f1 = (e1.x - p).length_squared();
                 if f1 < f {
                     t = t1;
@@ -502,11 +559,11 @@ impl Surface {
         Ok((t, e.x))
     }
 
-    /// The point of curve `curve` nearest to p, global and proven within
-    /// [`crate::snap::DEFAULT_TOLERANCE`] × the diagonal (see
-    /// [`Surface::curve_closest_point_within`]).
-    pub fn curve_closest_point(&self, curve: usize, p: DVec3) -> Result<CurveSnap> {
-        self.curve_closest_point_within(curve, p, crate::snap::DEFAULT_TOLERANCE)
+    /// The point of the curve nearest to p, global and proven within
+    /// [`DEFAULT_TOLERANCE`] × the diagonal (see
+    /// [`LimitCurve::closest_point_within`]).
+    pub fn closest_point(&self, p: DVec3) -> Result<CurveSnap> {
+        self.closest_point_within(p, DEFAULT_TOLERANCE)
     }
 
     /// The global nearest point of curve `curve` to p with a certificate:
@@ -518,13 +575,8 @@ impl Surface {
     /// bounded by the box of the control points its limit is a convex
     /// combination of (the rings of its two end vertices), sampled and
     /// solved for, and not split; its bound is the weaker one then.
-    pub fn curve_closest_point_within(
-        &self,
-        curve: usize,
-        p: DVec3,
-        tolerance: f64,
-    ) -> Result<CurveSnap> {
-        let c = self.curve(curve)?;
+    pub fn closest_point_within(&self, p: DVec3, tolerance: f64) -> Result<CurveSnap> {
+        let c = self.curve;
         if !p.is_finite() {
             return Err(Error::InvalidArgument(format!(
                 "point {:?} is not finite",
@@ -536,7 +588,7 @@ impl Surface {
                 "tolerance {tolerance}: must be positive"
             )));
         }
-        let tol = 0.99 * tolerance * self.net().bbox_diagonal();
+        let tol = 0.99 * tolerance * self.surface.net().bbox_diagonal();
         let mut best = CurveSnap {
             t: 0.0,
             point: DVec3::NAN,
@@ -544,7 +596,7 @@ impl Surface {
             lower_bound: 0.0,
         };
         let consider = |t: f64, best: &mut CurveSnap| -> Result<()> {
-            let (t, x) = self.descend_curve(curve, c, p, t)?;
+            let (t, x) = self.descend(p, t)?;
             let d = (x - p).length();
             if d < best.distance {
                 *best = CurveSnap {
@@ -573,11 +625,11 @@ impl Surface {
             heap.push(Reverse((bound.to_bits(), pieces.len() - 1)));
         }
         for k in 0..c.len() {
-            if self.near_dart(c, k) {
-                let bound = box_distance(p, &self.segment_support(c, k));
+            if self.near_dart(k) {
+                let bound = box_distance(p, &self.segment_support(k));
                 push(&mut heap, &mut pieces, bound, (k, 0.0, 1.0, None));
             } else {
-                let b = self.bezier_of_segment(c, k);
+                let b = self.bezier_of_segment(k);
                 push(
                     &mut heap,
                     &mut pieces,
@@ -601,7 +653,7 @@ impl Surface {
                 let mut nearest = (f64::INFINITY, k as f64);
                 for j in 0..=16 {
                     let t = k as f64 + j as f64 / 16.0;
-                    let d = (self.curve_eval(curve, t)?.x - p).length();
+                    let d = (self.eval(t)?.x - p).length();
                     if d < nearest.0 {
                         nearest = (d, t);
                     }
@@ -618,7 +670,7 @@ impl Surface {
             // the piece's bound, found by golden section.
             if let Some((s, d)) = convex_minimum(&b, p) {
                 let t = k as f64 + s0 + s * (s1 - s0);
-                let x = self.curve_eval(curve, t)?.x;
+                let x = self.eval(t)?.x;
                 if (x - p).length() < best.distance {
                     best = CurveSnap {
                         t,
@@ -628,7 +680,7 @@ impl Surface {
                     };
                 }
                 closed_bound = closed_bound
-                    .min(d - 1e-14 * (self.net().bbox_diagonal() + p.abs().max_element()));
+                    .min(d - 1e-14 * (self.surface.net().bbox_diagonal() + p.abs().max_element()));
                 continue;
             }
             splits += 1;
@@ -653,18 +705,19 @@ impl Surface {
     }
 
     /// The cubic Bézier points of B-spline segment k (displacement added).
-    fn bezier_of_segment(&self, c: &Curve, k: usize) -> [DVec3; 4] {
-        let [p0, p1, p2, p3] = [-1isize, 0, 1, 2].map(|d| self.chain_point(c, k as isize + d));
+    fn bezier_of_segment(&self, k: usize) -> [DVec3; 4] {
+        let c = self.curve;
+        let [p0, p1, p2, p3] = [-1isize, 0, 1, 2].map(|d| self.chain_point(k as isize + d));
         let mut b = [
             (p0 + 4.0 * p1 + p2) / 6.0,
             (2.0 * p1 + p2) / 3.0,
             (p1 + 2.0 * p2) / 3.0,
             (p1 + 4.0 * p2 + p3) / 6.0,
         ];
-        if self.mode() == crate::surface::SurfaceMode::Displacement {
+        if self.surface.mode() == SurfaceMode::Displacement {
             let (da, db) = (
-                self.displacement_of(c.chain[k]),
-                self.displacement_of(c.chain[k + 1]),
+                self.surface.displacement_of(c.chain[k]),
+                self.surface.displacement_of(c.chain[k + 1]),
             );
             for (i, x) in b.iter_mut().enumerate() {
                 let s = i as f64 / 3.0;
@@ -678,9 +731,10 @@ impl Surface {
     /// rings around its end vertices (a superset of the 1-rings of both
     /// adjacent triangles' corners; every Loop mask is a convex
     /// combination), shifted by the end displacements in displacement mode.
-    fn segment_support(&self, c: &Curve, k: usize) -> Vec<DVec3> {
-        let topo = self.net().topology();
-        let pts = self.net().points();
+    fn segment_support(&self, k: usize) -> Vec<DVec3> {
+        let c = self.curve;
+        let topo = self.surface.net().topology();
+        let pts = self.surface.net().points();
         let mut out = Vec::new();
         for v in [c.chain[k], c.chain[k + 1]] {
             out.push(pts[v as usize]);
@@ -688,10 +742,10 @@ impl Surface {
                 out.extend(topo.ring(u as usize).iter().map(|&w| pts[w as usize]));
             }
         }
-        if self.mode() == crate::surface::SurfaceMode::Displacement {
+        if self.surface.mode() == SurfaceMode::Displacement {
             let (da, db) = (
-                self.displacement_of(c.chain[k]),
-                self.displacement_of(c.chain[k + 1]),
+                self.surface.displacement_of(c.chain[k]),
+                self.surface.displacement_of(c.chain[k + 1]),
             );
             out = out.iter().flat_map(|&x| [x + da, x + db]).collect();
         }

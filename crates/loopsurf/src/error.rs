@@ -98,7 +98,7 @@ pub enum Error {
     /// or corner vertex).
     #[error("no tangent plane at vertex {vertex} ({kind} vertex) of the refined net")]
     NoTangentPlane { vertex: u32, kind: &'static str },
-    /// A surface stream ([`crate::Surface::from_bytes`]) that is truncated,
+    /// A surface stream ([`crate::stream::from_bytes`]) that is truncated,
     /// damaged, of another format version, or describes an invalid net.
     #[error("surface stream: {message}")]
     Stream { message: String },

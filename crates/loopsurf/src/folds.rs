@@ -1,7 +1,7 @@
 //! Where the geometry folds back on itself, found so that users hear of
 //! it before they look at a mesh of it: edges where the control net
-//! folds ([`ControlNet::folds`]), and control triangles whose patch of the
-//! limit surface folds over itself ([`Surface::folded_patches`]). Neither
+//! folds ([`folded_edges`]), and control triangles whose patch of the
+//! limit surface folds over itself ([`folded_patches`]). Neither
 //! is an error (the surface is well defined), but no mesh of a fold has
 //! good triangles that all face one way.
 
@@ -11,7 +11,7 @@ use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// An edge where the net folds back on itself ([`ControlNet::folds`]).
+/// An edge where the net folds back on itself ([`folded_edges`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fold {
     /// Its vertices, i < j.
@@ -22,32 +22,30 @@ pub struct Fold {
     pub degrees: f64,
 }
 
-impl ControlNet {
-    /// The interior edges where the net folds back on itself: the normals
-    /// of their two triangles turn by more than `degrees` (150 finds
-    /// pig.off's near-degenerate triangle 534, folded back between its
-    /// neighbours), largest turn first. The limit surface has a fin along
-    /// such an edge, which a hard angle below the turn makes a crease; a
-    /// mesh of the fin has poor triangles whatever the mesher, so callers
-    /// warn (the `loopsurf` command does) rather than refuse.
-    pub fn folds(&self, degrees: f64) -> Vec<Fold> {
-        let threshold = degrees.to_radians();
-        let mut folds: Vec<Fold> = (0..self.topology().num_edges())
-            .filter_map(|e| {
-                let angle = dihedral_angle(self.topology(), self.points(), e)?;
-                (angle > threshold).then(|| Fold {
-                    edge: self.topology().edges()[e],
-                    triangles: self.topology().edge_triangles()[e],
-                    degrees: angle.to_degrees(),
-                })
+/// The interior edges where the net folds back on itself: the normals
+/// of their two triangles turn by more than `degrees` (150 finds
+/// pig.off's near-degenerate triangle 534, folded back between its
+/// neighbours), largest turn first. The limit surface has a fin along
+/// such an edge, which a hard angle below the turn makes a crease; a
+/// mesh of the fin has poor triangles whatever the mesher, so callers
+/// warn (the `loopsurf` command does) rather than refuse.
+pub fn folded_edges(net: &ControlNet, degrees: f64) -> Vec<Fold> {
+    let threshold = degrees.to_radians();
+    let mut folds: Vec<Fold> = (0..net.topology().num_edges())
+        .filter_map(|e| {
+            let angle = dihedral_angle(net.topology(), net.points(), e)?;
+            (angle > threshold).then(|| Fold {
+                edge: net.topology().edges()[e],
+                triangles: net.topology().edge_triangles()[e],
+                degrees: angle.to_degrees(),
             })
-            .collect();
-        folds.sort_by(|a, b| b.degrees.total_cmp(&a.degrees));
-        folds
-    }
+        })
+        .collect();
+    folds.sort_by(|a, b| b.degrees.total_cmp(&a.degrees));
+    folds
 }
 
-/// Samples per side of [`Surface::folded_patches`]'s grid.
+/// Samples per side of [`folded_patches`]'s grid.
 const GRID: usize = 16;
 
 /// How far the grid keeps from the sides of the control triangle, in its
@@ -61,38 +59,36 @@ const INSET: f64 = 1.0 / 32.0;
 /// wide, and turns far less on any net whose surface does not fold.
 const FOLD_COSINE: f64 = -0.5;
 
-impl Surface {
-    /// The control triangles whose patch folds over itself: the surface
-    /// normals at two points of its grid (16 to a side, 1/32 in from the
-    /// sides, where creases and special vertices are) turn by more than
-    /// 120°. Coarse nets fold next to corners, creases and irregular
-    /// vertices of high valence: hole.off's faces beside its rim at 40°
-    /// (the normal turns from −x to +x within 0.1 of the crease),
-    /// anchor.off's flat fans around valence 34 and 22 (the normal flips
-    /// ±y within 4e-7 of its plane), pig.off next to its folded needle;
-    /// none on the Viking, fandisk or CAD cubes. Every patch is evaluated,
-    /// 153 times: on large nets, ask [`Surface::is_folded`] where a mesh
-    /// shows trouble.
-    pub fn folded_patches(&self) -> Vec<usize> {
-        (0..self.net().triangles().len())
-            .into_par_iter()
-            .filter(|&t| self.is_folded(t))
-            .collect()
-    }
+/// The control triangles whose patch folds over itself: the surface
+/// normals at two points of its grid (16 to a side, 1/32 in from the
+/// sides, where creases and special vertices are) turn by more than
+/// 120°. Coarse nets fold next to corners, creases and irregular
+/// vertices of high valence: hole.off's faces beside its rim at 40°
+/// (the normal turns from −x to +x within 0.1 of the crease),
+/// anchor.off's flat fans around valence 34 and 22 (the normal flips
+/// ±y within 4e-7 of its plane), pig.off next to its folded needle;
+/// none on the Viking, fandisk or CAD cubes. Every patch is evaluated,
+/// 153 times: on large nets, ask [`is_folded`] where a mesh
+/// shows trouble.
+pub fn folded_patches(surface: &Surface) -> Vec<usize> {
+    (0..surface.net().triangles().len())
+        .into_par_iter()
+        .filter(|&t| is_folded(surface, t))
+        .collect()
+}
 
-    /// Whether control triangle t's patch folds over itself (see
-    /// [`Surface::folded_patches`]); false for a triangle out of range.
-    pub fn is_folded(&self, t: usize) -> bool {
-        let normals: Vec<DVec3> = (0..=GRID)
-            .flat_map(|i| (0..=GRID - i).map(move |j| (i, j)))
-            .filter_map(|(i, j)| {
-                let at = |k: usize| INSET + (1.0 - 3.0 * INSET) * k as f64 / GRID as f64;
-                self.normal(t, at(i), at(j)).ok()
-            })
-            .filter(|n| *n != DVec3::ZERO)
-            .collect();
-        turns_back(&normals)
-    }
+/// Whether control triangle t's patch folds over itself (see
+/// [`folded_patches`]); false for a triangle out of range.
+pub fn is_folded(surface: &Surface, t: usize) -> bool {
+    let normals: Vec<DVec3> = (0..=GRID)
+        .flat_map(|i| (0..=GRID - i).map(move |j| (i, j)))
+        .filter_map(|(i, j)| {
+            let at = |k: usize| INSET + (1.0 - 3.0 * INSET) * k as f64 / GRID as f64;
+            surface.normal(t, at(i), at(j)).ok()
+        })
+        .filter(|n| *n != DVec3::ZERO)
+        .collect();
+    turns_back(&normals)
 }
 
 /// Whether two of `normals` are further apart than [`FOLD_COSINE`], by
@@ -119,6 +115,7 @@ fn turns_back(normals: &[DVec3]) -> bool {
 
 #[cfg(test)]
 mod tests {
+    use super::folded_edges;
     use crate::examples;
     use crate::net::ControlNet;
 
@@ -138,16 +135,16 @@ mod tests {
             let points = points.map(glam::DVec3::from).to_vec();
             ControlNet::from_arrays(points, &[[0, 1, 2], [1, 0, 3]]).unwrap()
         };
-        assert!(strip(0.0, -1.0).folds(1.0).is_empty());
-        let folded = strip(1e-3, 1.0).folds(150.0);
+        assert!(folded_edges(&strip(0.0, -1.0), 1.0).is_empty());
+        let folded = folded_edges(&strip(1e-3, 1.0), 150.0);
         assert_eq!(folded.len(), 1);
         assert_eq!(folded[0].edge, [0, 1]);
         assert_eq!(folded[0].triangles, [0, 1]);
         assert!((folded[0].degrees - 180.0).abs() < 0.1, "{folded:?}");
         let e = examples::by_name("tetra").unwrap();
         let tetra = ControlNet::from_arrays(e.points, &e.tris).unwrap();
-        assert!(tetra.folds(150.0).is_empty());
-        let all = tetra.folds(100.0);
+        assert!(folded_edges(&tetra, 150.0).is_empty());
+        let all = folded_edges(&tetra, 100.0);
         assert_eq!(all.len(), 6);
         let regular = 180.0 - (1.0f64 / 3.0).acos().to_degrees();
         assert!(

@@ -49,6 +49,7 @@ pub mod surface;
 pub mod topology;
 
 pub use adapt::{Adapter, AdaptiveMesh};
+pub use curve::LimitCurve;
 pub use error::{Element, Error, Result};
 pub use features::{Features, VertexKind};
 pub use folds::Fold;

@@ -4,8 +4,8 @@
 use crate::error::{Element, Error, Result};
 use crate::features::{classify, Features, VertexKind};
 use crate::geometry::{area, is_degenerate};
-use crate::io::{self, MeshData, ReadOptions};
-use crate::repair::{self, Repair, Repairs};
+use crate::io::{self, MeshData};
+use crate::repair::{self, ReadOptions, Repair, Repairs};
 use crate::rules;
 use crate::topology::Topology;
 use glam::DVec3;
@@ -36,7 +36,7 @@ impl ControlNet {
     /// for text formats, the line.
     pub fn read_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<ControlNet> {
         let path = path.as_ref();
-        let mut data = io::read_mesh(path, opts)?;
+        let mut data = io::read_mesh(path, &opts.parse_options())?;
         Self::build(&mut data, &opts.repairs).map_err(|err| {
             let line = match err.element() {
                 Some(Element::Triangle(t)) => data.tri_lines.get(t).copied(),

@@ -40,58 +40,56 @@ const MODES: [SurfaceMode; 3] = [
 const HEADER_BYTES: usize = 8 + 4 + 4 + 4 * 8;
 const CHECKSUM_BYTES: usize = 4;
 
-impl Surface {
-    /// The surface as a versioned, checksummed byte stream
-    /// (see [`Surface::from_bytes`]).
-    pub fn to_bytes(&self) -> Vec<u8> {
-        let net = self.net();
-        let hard = net.hard_edges();
-        let tagged: Vec<u32> = (0..net.points().len() as u32)
-            .filter(|&v| net.features().is_tagged_vertex(v as usize))
-            .collect();
-        let len = HEADER_BYTES
-            + 24 * net.points().len()
-            + 12 * net.triangles().len()
-            + 8 * hard.len()
-            + 4 * tagged.len()
-            + CHECKSUM_BYTES;
-        let mut out = Vec::with_capacity(len);
-        out.extend_from_slice(MAGIC);
-        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-        let mode = MODES
-            .iter()
-            .position(|&m| m == self.mode())
-            .expect("every mode listed") as u32;
-        out.extend_from_slice(&mode.to_le_bytes());
-        for count in [
-            net.points().len(),
-            net.triangles().len(),
-            hard.len(),
-            tagged.len(),
-        ] {
-            out.extend_from_slice(&(count as u64).to_le_bytes());
-        }
-        for p in net.points() {
-            for c in p.to_array() {
-                out.extend_from_slice(&c.to_le_bytes());
-            }
-        }
-        let indices = net.triangles().iter().flatten();
-        for i in indices.chain(hard.iter().flatten()).chain(&tagged) {
-            out.extend_from_slice(&i.to_le_bytes());
-        }
-        let crc = crc32fast::hash(&out);
-        out.extend_from_slice(&crc.to_le_bytes());
-        debug_assert_eq!(out.len(), len);
-        out
+/// The surface as a versioned, checksummed byte stream
+/// (see [`from_bytes`]).
+pub fn to_bytes(surface: &Surface) -> Vec<u8> {
+    let net = surface.net();
+    let hard = net.hard_edges();
+    let tagged: Vec<u32> = (0..net.points().len() as u32)
+        .filter(|&v| net.features().is_tagged_vertex(v as usize))
+        .collect();
+    let len = HEADER_BYTES
+        + 24 * net.points().len()
+        + 12 * net.triangles().len()
+        + 8 * hard.len()
+        + 4 * tagged.len()
+        + CHECKSUM_BYTES;
+    let mut out = Vec::with_capacity(len);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    let mode = MODES
+        .iter()
+        .position(|&m| m == surface.mode())
+        .expect("every mode listed") as u32;
+    out.extend_from_slice(&mode.to_le_bytes());
+    for count in [
+        net.points().len(),
+        net.triangles().len(),
+        hard.len(),
+        tagged.len(),
+    ] {
+        out.extend_from_slice(&(count as u64).to_le_bytes());
     }
+    for p in net.points() {
+        for c in p.to_array() {
+            out.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    let indices = net.triangles().iter().flatten();
+    for i in indices.chain(hard.iter().flatten()).chain(&tagged) {
+        out.extend_from_slice(&i.to_le_bytes());
+    }
+    let crc = crc32fast::hash(&out);
+    out.extend_from_slice(&crc.to_le_bytes());
+    debug_assert_eq!(out.len(), len);
+    out
+}
 
-    /// Rebuilds a surface from [`Surface::to_bytes`] output. Evaluations of
-    /// the result are bit-identical to those of the original.
-    pub fn from_bytes(bytes: &[u8]) -> Result<Surface> {
-        let (net, mode) = read_net(bytes)?;
-        Surface::from_net(net, mode)
-    }
+/// Rebuilds a surface from [`to_bytes`] output. Evaluations of
+/// the result are bit-identical to those of the original.
+pub fn from_bytes(bytes: &[u8]) -> Result<Surface> {
+    let (net, mode) = read_net(bytes)?;
+    Surface::from_net(net, mode)
 }
 
 fn bad(message: impl Into<String>) -> Error {
@@ -209,11 +207,11 @@ mod tests {
     #[test]
     fn round_trip_is_bit_identical() {
         let s = viking();
-        let bytes = s.to_bytes();
-        let t = Surface::from_bytes(&bytes).unwrap();
+        let bytes = to_bytes(&s);
+        let t = from_bytes(&bytes).unwrap();
         assert_eq!(t.net().hard_edges(), s.net().hard_edges());
         assert_eq!(t.net().vertex_kinds(), s.net().vertex_kinds());
-        assert_eq!(t.to_bytes(), bytes);
+        assert_eq!(to_bytes(&t), bytes);
         for tri in (0..s.net().triangles().len()).step_by(7) {
             for (v, w) in [(0.1, 0.2), (0.0, 0.0), (0.5, 0.5), (1.0 / 3.0, 0.25)] {
                 let (a, b) = (s.eval(tri, v, w).unwrap(), t.eval(tri, v, w).unwrap());
@@ -228,7 +226,7 @@ mod tests {
         net.tag_by_angle(30.0).unwrap();
         for mode in MODES {
             let s = Surface::with_mode(&net, mode).unwrap();
-            let t = Surface::from_bytes(&s.to_bytes()).unwrap();
+            let t = from_bytes(&to_bytes(&s)).unwrap();
             assert_eq!(t.mode(), mode);
             let (a, b) = (s.eval(7, 0.2, 0.3).unwrap(), t.eval(7, 0.2, 0.3).unwrap());
             assert_eq!(a.record().map(f64::to_bits), b.record().map(f64::to_bits));
@@ -239,8 +237,8 @@ mod tests {
     fn every_truncation_and_every_flipped_byte_is_an_error() {
         let mut net = net("tetra");
         net.tag_vertex(0).unwrap();
-        let bytes = Surface::new(&net).unwrap().to_bytes();
-        let stream_error = |b: &[u8]| matches!(Surface::from_bytes(b), Err(Error::Stream { .. }));
+        let bytes = to_bytes(&Surface::new(&net).unwrap());
+        let stream_error = |b: &[u8]| matches!(from_bytes(b), Err(Error::Stream { .. }));
         for n in 0..bytes.len() {
             assert!(stream_error(&bytes[..n]), "truncated to {n} bytes");
         }
@@ -253,7 +251,7 @@ mod tests {
 
     #[test]
     fn a_valid_checksum_over_an_invalid_net_is_still_rejected() {
-        let bytes = viking().to_bytes();
+        let bytes = to_bytes(&viking());
         // Point triangle 0's first corner at a vertex that does not exist,
         // then re-seal the stream so only validation can catch it.
         let mut forged = bytes.clone();
@@ -262,7 +260,7 @@ mod tests {
         let body = forged.len() - CHECKSUM_BYTES;
         let crc = crc32fast::hash(&forged[..body]);
         forged[body..].copy_from_slice(&crc.to_le_bytes());
-        let err = Surface::from_bytes(&forged).err().unwrap().to_string();
+        let err = from_bytes(&forged).err().unwrap().to_string();
         assert!(
             err.contains("invalid net") && err.contains("triangle 0"),
             "{err}"
@@ -271,11 +269,8 @@ mod tests {
 
     #[test]
     fn huge_counts_do_not_allocate() {
-        let mut bytes = viking().to_bytes();
+        let mut bytes = to_bytes(&viking());
         bytes[16..24].copy_from_slice(&u64::MAX.to_le_bytes());
-        assert!(matches!(
-            Surface::from_bytes(&bytes),
-            Err(Error::Stream { .. })
-        ));
+        assert!(matches!(from_bytes(&bytes), Err(Error::Stream { .. })));
     }
 }

@@ -12,6 +12,7 @@ use crate::net::ControlNet;
 use crate::parameters::{clamp_to_triangle, CORNERS};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use std::any::TypeId;
 
 /// How far outside its triangle a point may lie and still be accepted (then
 /// clamped): round-off, not extrapolation.
@@ -24,18 +25,27 @@ pub struct Surface {
     mode: SurfaceMode,
     /// Displacement mode only: original point minus limit point, per vertex.
     displacement: Vec<DVec3>,
-    /// What a layer above builds from the surface on first use (the snap
-    /// index, on the first snap, so evaluation-only users never pay for it).
-    derived: std::sync::OnceLock<Box<dyn Derived>>,
+    /// What layers above build from the surface on first use, one slot
+    /// per kind (the snap index on the first snap, the curves' lengths on
+    /// the first length asked), so users who only evaluate never pay for
+    /// them. A slot is claimed for its kind first and filled after, so
+    /// that building one kind never waits on the building of another.
+    derived: [DerivedSlot; DERIVED_KINDS],
     /// Corners, curves and faces, traced on first use.
     model: std::sync::OnceLock<crate::model::Model>,
-    /// Per curve of the model, its segment lengths, integrated on first use.
-    curve_lengths: std::sync::OnceLock<Vec<std::sync::OnceLock<Vec<f64>>>>,
 }
 
+/// How many kinds of [`Derived`] data a surface can hold.
+const DERIVED_KINDS: usize = 2;
+
+/// One kind of [`Derived`] data: the type it was claimed for, and the data
+/// once built.
+type DerivedSlot = std::sync::OnceLock<(TypeId, std::sync::OnceLock<Box<dyn Derived>>)>;
+
 /// Data that a layer above the surface derives from it once and caches
-/// with it (the snap index): the surface holds it without knowing how it
-/// is built or what it is.
+/// with it (the snap index, the curves' lengths): the surface holds it
+/// without knowing how it is built or what it is, so it does not depend on
+/// the modules that use it.
 pub(crate) trait Derived: std::any::Any + Send + Sync {
     /// Bytes it holds, counted in [`Surface::memory_bytes`].
     fn memory_bytes(&self) -> usize;
@@ -182,19 +192,29 @@ impl Surface {
             net,
             mode,
             displacement,
-            derived: std::sync::OnceLock::new(),
+            derived: Default::default(),
             model: std::sync::OnceLock::new(),
-            curve_lengths: std::sync::OnceLock::new(),
         })
     }
 
     /// The surface's derived data of type `T`, built by `build` on first
-    /// use. One type only per surface (the snap index): asking for another
-    /// is a bug in loopsurf, caught here.
+    /// use. Its slot is the first one claimed for `T`, or else the first
+    /// unclaimed one (a claim never changes, so each kind has one slot
+    /// even when threads race). More kinds than [`DERIVED_KINDS`] are a
+    /// bug in loopsurf, caught here.
     pub(crate) fn derived<T: Derived>(&self, build: impl FnOnce(&Surface) -> T) -> &T {
-        let data: &dyn std::any::Any = self.derived.get_or_init(|| Box::new(build(self))).as_ref();
+        let kind = TypeId::of::<T>();
+        let (_, slot) = self
+            .derived
+            .iter()
+            .map(|slot| slot.get_or_init(|| (kind, std::sync::OnceLock::new())))
+            .find(|(claimed, _)| *claimed == kind)
+            .unwrap_or_else(|| {
+                panic!("a surface caches at most {DERIVED_KINDS} kinds of derived data")
+            });
+        let data: &dyn std::any::Any = slot.get_or_init(|| Box::new(build(self))).as_ref();
         data.downcast_ref::<T>()
-            .expect("a surface caches one kind of derived data")
+            .expect("a slot holds the kind it was claimed for")
     }
 
     /// The evaluator behind this surface (the approximating surface of its
@@ -222,15 +242,6 @@ impl Surface {
             .get_or_init(|| crate::model::Model::new(self.net.topology(), self.net.features()))
     }
 
-    /// One empty slot per model curve for its segment lengths.
-    pub(crate) fn curve_lengths_cache(&self) -> &[std::sync::OnceLock<Vec<f64>>] {
-        self.curve_lengths.get_or_init(|| {
-            (0..self.model().curves().len())
-                .map(|_| std::sync::OnceLock::new())
-                .collect()
-        })
-    }
-
     /// The displacement of vertex `v` (zero unless in displacement mode).
     pub(crate) fn displacement_of(&self, v: u32) -> DVec3 {
         self.displacement
@@ -250,10 +261,17 @@ impl Surface {
     }
 
     /// Bytes the surface holds beyond its control net (per-triangle tables,
-    /// the shared special-vertex configurations, and the snapping index
-    /// once a snap has built it).
+    /// the shared special-vertex configurations, and what layers above
+    /// derived from it: the snapping index once a snap has built it, the
+    /// curves' lengths once one was asked for).
     pub fn memory_bytes(&self) -> usize {
-        self.evaluator.memory_bytes() + self.derived.get().map_or(0, |d| d.memory_bytes())
+        self.evaluator.memory_bytes()
+            + self
+                .derived
+                .iter()
+                .filter_map(|slot| slot.get()?.1.get())
+                .map(|d| d.memory_bytes())
+                .sum::<usize>()
     }
 
     /// Number of distinct special-vertex configurations built so far (each

@@ -13,6 +13,7 @@
 mod common;
 
 use common::{cgal_mesh, example};
+use loopsurf::snap;
 use loopsurf::{AdaptiveMesh, ControlNet, Surface};
 use std::collections::HashMap;
 
@@ -39,7 +40,11 @@ fn deviation(net: &ControlNet, surface: &Surface) -> f64 {
             0.5 * (b + c),
             0.5 * (c + a),
         ] {
-            worst = worst.max(surface.closest_point_within(x, 1e-9).unwrap().distance);
+            worst = worst.max(
+                snap::closest_point_within(surface, x, 1e-9)
+                    .unwrap()
+                    .distance,
+            );
         }
     }
     worst / surface.net().bbox_diagonal()

@@ -6,7 +6,8 @@
 
 mod common;
 
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
+use loopsurf::snap;
 use loopsurf::{ControlNet, Error, Surface};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -51,9 +52,8 @@ fn evaluate(net: &ControlNet, name: &str) {
             .unwrap_or_else(|e| panic!("{name}: {e}")),
     );
     let off = 1e-3 * diag;
-    let snap = surface
-        .closest_point(x + off * normal)
-        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let snap =
+        snap::closest_point(&surface, x + off * normal).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(snap.distance <= off * (1.0 + 1e-9), "{name}: {snap:?}");
 }
 

@@ -7,7 +7,7 @@ mod common;
 use common::example;
 use loopsurf::model::Curve;
 use loopsurf::refine::refine_uniform;
-use loopsurf::{ControlNet, DVec3, Surface};
+use loopsurf::{ControlNet, DVec3, LimitCurve, Surface};
 
 /// A dart crease: two hard edges (a, b), (b, c) inside the icosphere.
 fn darts() -> ControlNet {
@@ -113,15 +113,16 @@ fn curves_equal_the_surface_on_both_sides() {
         let model = surface.model();
         assert!(!model.curves().is_empty(), "{name}");
         for (id, c) in model.curves().iter().enumerate() {
+            let curve = LimitCurve::new(&surface, id).unwrap();
             for k in 0..c.len() {
                 // Integer t: the chain vertex's limit point.
-                let at = surface.curve_eval(id, k as f64).unwrap();
+                let at = curve.eval(k as f64).unwrap();
                 assert!(
                     (at.x - limits[c.chain[k] as usize]).length() <= 1e-13 * diag,
                     "{name} curve {id} t={k}"
                 );
                 for s in [0.125, 0.37, 0.5, 0.91] {
-                    let e = surface.curve_eval(id, k as f64 + s).unwrap();
+                    let e = curve.eval(k as f64 + s).unwrap();
                     for [x, dx, ddx] in surface_sides(&surface, c, k, s) {
                         let scale = diag * c.len() as f64;
                         assert!(
@@ -145,7 +146,7 @@ fn curves_equal_the_surface_on_both_sides() {
                     }
                 }
             }
-            let end = surface.curve_eval(id, c.len() as f64).unwrap();
+            let end = curve.eval(c.len() as f64).unwrap();
             assert!((end.x - limits[c.chain[c.len()] as usize]).length() <= 1e-13 * diag);
         }
     }
@@ -178,13 +179,14 @@ fn curves_match_dyadic_refinement_with_derivatives() {
         let surface = Surface::new(&net).unwrap();
         let diag = net.bbox_diagonal();
         for (id, c) in surface.model().curves().iter().enumerate() {
+            let curve = LimitCurve::new(&surface, id).unwrap();
             let (fine, chain) = refined_chain(&net, c, LEVELS);
             let limits = fine.limit_points();
             let step = 1.0 / (1 << LEVELS) as f64;
             // Positions at every dyadic t of level 4.
             let dyadic = |j: usize| limits[chain[j] as usize];
             for j in 0..chain.len() {
-                let e = surface.curve_eval(id, j as f64 * step).unwrap();
+                let e = curve.eval(j as f64 * step).unwrap();
                 assert!(
                     (e.x - dyadic(j)).length() <= 1e-13 * diag,
                     "{name} curve {id} t={}: {} vs {}",
@@ -205,7 +207,7 @@ fn curves_match_dyadic_refinement_with_derivatives() {
                 };
                 let dx = (4.0 * d1(1) - d1(2)) / 3.0;
                 let ddx = (4.0 * d2(1) - d2(2)) / 3.0;
-                let e = surface.curve_eval(id, k as f64 + 0.5).unwrap();
+                let e = curve.eval(k as f64 + 0.5).unwrap();
                 let near_dart = e.x != e.x || is_near_dart(&surface, c, k);
                 let tol = if near_dart { 1e-4 } else { 1e-11 };
                 let scale = diag * c.len() as f64;
@@ -237,14 +239,15 @@ fn arc_length_matches_refined_polylines_and_inverts() {
     for (name, net) in nets() {
         let surface = Surface::new(&net).unwrap();
         for (id, c) in surface.model().curves().iter().enumerate() {
+            let curve = LimitCurve::new(&surface, id).unwrap();
             let n = c.len() as f64;
-            let total = surface.curve_length(id, 0.0, n).unwrap();
+            let total = curve.length(0.0, n).unwrap();
             // Additive over segments, antisymmetric.
             let sum: f64 = (0..c.len())
-                .map(|k| surface.curve_length(id, k as f64, k as f64 + 1.0).unwrap())
+                .map(|k| curve.length(k as f64, k as f64 + 1.0).unwrap())
                 .sum();
             assert!((sum - total).abs() <= 1e-13 * total, "{name} curve {id}");
-            assert_eq!(surface.curve_length(id, n, 0.0).unwrap(), -total);
+            assert_eq!(curve.length(n, 0.0).unwrap(), -total);
             // Independent: polylines through the exact dyadic limit points
             // of levels 5 and 6, Richardson-extrapolated (error O(h⁴)).
             let poly = |levels: u32| {
@@ -265,14 +268,14 @@ fn arc_length_matches_refined_polylines_and_inverts() {
             // The inverse: equally spaced points come back to their lengths.
             for i in 0..=7 {
                 let s = total * i as f64 / 7.0;
-                let t = surface.curve_param_at_length(id, s).unwrap();
-                let back = surface.curve_length(id, 0.0, t).unwrap();
+                let t = curve.param_at_length(s).unwrap();
+                let back = curve.length(0.0, t).unwrap();
                 assert!(
                     (back - s).abs() <= 1e-12 * total,
                     "{name} curve {id}: {s} → t {t} → {back}"
                 );
             }
-            assert!(surface.curve_param_at_length(id, 1.01 * total).is_err());
+            assert!(curve.param_at_length(1.01 * total).is_err());
         }
     }
 }
@@ -284,9 +287,10 @@ fn points_of_a_curve_map_to_both_faces() {
         let diag = net.bbox_diagonal();
         let model = surface.model();
         for (id, c) in model.curves().iter().enumerate() {
+            let curve = LimitCurve::new(&surface, id).unwrap();
             for t in [0.0, 0.3, c.len() as f64 * 0.5 + 0.1, c.len() as f64] {
-                let x = surface.curve_eval(id, t).unwrap().x;
-                let sides = surface.curve_surface_points(id, t).unwrap();
+                let x = curve.eval(t).unwrap().x;
+                let sides = curve.surface_points(t).unwrap();
                 let faces: Vec<u32> = c.faces.iter().flatten().copied().collect();
                 assert_eq!(
                     sides.iter().map(|s| s.0).collect::<Vec<_>>(),
@@ -310,15 +314,15 @@ fn projection_finds_the_nearest_curve_point_with_a_certificate() {
         let diag = net.bbox_diagonal();
         let mut rng = common::Lcg(11);
         for (id, c) in surface.model().curves().iter().enumerate() {
+            let curve = LimitCurve::new(&surface, id).unwrap();
             let n = c.len() as f64;
             for _ in 0..6 {
-                let p = surface.curve_eval(id, rng.next() * n).unwrap().x
-                    + 0.2 * diag * rng.direction();
-                let snap = surface.curve_closest_point(id, p).unwrap();
+                let p = curve.eval(rng.next() * n).unwrap().x + 0.2 * diag * rng.direction();
+                let snap = curve.closest_point(p).unwrap();
                 // Brute force over a fine sampling: never nearer than the
                 // answer, beyond the sampling's reach.
                 let brute = (0..=400 * c.len())
-                    .map(|i| (surface.curve_eval(id, i as f64 / 400.0).unwrap().x - p).length())
+                    .map(|i| (curve.eval(i as f64 / 400.0).unwrap().x - p).length())
                     .fold(f64::INFINITY, f64::min);
                 assert!(
                     snap.distance <= brute + 1e-12 * diag,
@@ -333,17 +337,15 @@ fn projection_finds_the_nearest_curve_point_with_a_certificate() {
                     );
                 }
                 // Local projection from the answer's neighbourhood lands on it.
-                let local = surface
-                    .curve_project(id, p, (snap.t + 0.05).min(n))
-                    .unwrap();
+                let local = curve.project(p, (snap.t + 0.05).min(n)).unwrap();
                 assert!(
                     (local.distance - snap.distance).abs() <= 1e-10 * diag,
                     "{name} {id}: {local:?} vs {snap:?}"
                 );
                 // A point on the curve projects to itself.
                 let t = rng.next() * n;
-                let on = surface.curve_eval(id, t).unwrap().x;
-                let back = surface.curve_closest_point(id, on).unwrap();
+                let on = curve.eval(t).unwrap().x;
+                let back = curve.closest_point(on).unwrap();
                 assert!(back.distance <= 1e-12 * diag, "{name} curve {id}: {back:?}");
             }
         }

@@ -1,4 +1,4 @@
-//! Folds of the geometry (`ControlNet::folds`, `Surface::folded_patches`)
+//! Folds of the geometry (`folds::folded_edges`, `folds::folded_patches`)
 //! against an independent reference: the facets of the dyadic refinement
 //! (DESIGN.md), whose vertices are pushed to the limit by their limit
 //! masks, with no evaluation of the patches involved.
@@ -6,7 +6,7 @@
 mod common;
 
 use common::{cgal_mesh, example};
-use loopsurf::io::ReadOptions;
+use loopsurf::repair::ReadOptions;
 use loopsurf::{ControlNet, Surface};
 use std::collections::{BTreeSet, HashMap};
 
@@ -68,7 +68,9 @@ fn folded_patches_are_where_the_refined_facets_turn_back() {
     }
     for (name, net, folds) in nets {
         let surface = Surface::new(&net).unwrap();
-        let found: BTreeSet<usize> = surface.folded_patches().into_iter().collect();
+        let found: BTreeSet<usize> = loopsurf::folds::folded_patches(&surface)
+            .into_iter()
+            .collect();
         let reference = facets_that_turn_back(&net, 5);
         println!("{name}: folded patches {found:?}, refined facets turning back in {reference:?}");
         if let Some(folds) = folds {

@@ -6,7 +6,7 @@
 //! `queries` by crates/loopsurf-cli/tests/query_lines.rs, `arrays` by
 //! crates/loopsurf-capi/tests/hostile_arrays.rs.
 
-use loopsurf::io::{parse_mesh, ReadOptions};
+use loopsurf::io::{parse_mesh, ParseOptions};
 use loopsurf::repair::Repairs;
 use loopsurf::{ControlNet, Surface};
 use std::path::{Path, PathBuf};
@@ -32,10 +32,7 @@ fn mesh_pipeline(format: &str, data: &[u8]) {
         (true, Repairs::default()),
         (true, Repairs::all()),
     ] {
-        let opts = ReadOptions {
-            triangulate,
-            ..Default::default()
-        };
+        let opts = ParseOptions { triangulate };
         let name = format!("input.{format}");
         let Ok(mesh) = parse_mesh(data.to_vec(), Path::new(&name), &opts) else {
             continue;
@@ -85,7 +82,7 @@ fn lagrange_readers_replay_their_fuzz_inputs() {
 #[test]
 fn surface_streams_replay_their_fuzz_inputs() {
     replay("stream", |data| {
-        let _ = Surface::from_bytes(data);
+        let _ = loopsurf::stream::from_bytes(data);
     });
 }
 
@@ -106,7 +103,7 @@ fn huge_counts_in_tiny_files_are_refused_cheaply() {
     ];
     for (format, data) in cases {
         let name = format!("input.{format}");
-        let result = parse_mesh(data, Path::new(&name), &ReadOptions::default());
+        let result = parse_mesh(data, Path::new(&name), &ParseOptions::default());
         assert!(
             result.is_err(),
             "{format}: a truncated file with huge counts read"

@@ -10,7 +10,7 @@ mod common;
 use common::{cgal_mesh, example};
 use loopsurf::io;
 use loopsurf::mesh::high_order::{onto_surface, CurvedMesh, DEFAULT_MAX_MOVE};
-use loopsurf::{ControlNet, DVec3, Density, Mesher, Remesher, Surface};
+use loopsurf::{ControlNet, DVec3, Density, LimitCurve, Mesher, Remesher, Surface};
 use std::collections::HashMap;
 
 /// Every node is `eval` of its parameters to 1e-12 of the diagonal.
@@ -166,7 +166,10 @@ fn remeshed_viking_curves_onto_surface_and_creases() {
         for (line, &c) in curved.lines.chunks(k + 1).zip(&curved.line_curves) {
             for &node in &line[2..] {
                 let x = curved.nodes[node as usize];
-                let snap = surface.curve_closest_point(c as usize, x).unwrap();
+                let snap = LimitCurve::new(&surface, c as usize)
+                    .unwrap()
+                    .closest_point(x)
+                    .unwrap();
                 assert!(
                     snap.distance <= 1e-9 * diagonal,
                     "node {node} is {:e} off curve {c}",
@@ -213,7 +216,7 @@ fn curving_a_mesh_made_elsewhere() {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("charts.off");
     io::write_mesh(&file, &mesh.points, &mesh.triangles).unwrap();
-    let read = io::read_off(&file, &io::ReadOptions::default()).unwrap();
+    let read = io::read_off(&file, &io::ParseOptions::default()).unwrap();
     let tris: Vec<[u32; 3]> = read.tris.iter().map(|t| t.map(|i| i as u32)).collect();
 
     let onto = onto_surface(&surface, &read.points, &tris, DEFAULT_MAX_MOVE).unwrap();
@@ -261,8 +264,9 @@ fn curving_a_mesh_made_elsewhere() {
     check_shared_edges("perturbed fandisk", &curved);
     for (line, &c) in curved.lines.chunks(4).zip(&curved.line_curves) {
         for &node in line {
-            let snap = surface
-                .curve_closest_point(c as usize, curved.nodes[node as usize])
+            let snap = LimitCurve::new(&surface, c as usize)
+                .unwrap()
+                .closest_point(curved.nodes[node as usize])
                 .unwrap();
             assert!(
                 snap.distance <= 1e-9 * diagonal,

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use loopsurf::io::{
-    read_mesh, write_mesh, write_tri_with_components, write_vtu, DataArray, MeshData, ReadOptions,
+    read_mesh, write_mesh, write_tri_with_components, write_vtu, DataArray, MeshData, ParseOptions,
 };
 use loopsurf::Error;
 
@@ -29,17 +29,11 @@ fn put(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
 }
 
 fn read(p: &Path) -> loopsurf::Result<MeshData> {
-    read_mesh(p, &ReadOptions::default())
+    read_mesh(p, &ParseOptions::default())
 }
 
 fn read_tri_opts(p: &Path) -> loopsurf::Result<MeshData> {
-    read_mesh(
-        p,
-        &ReadOptions {
-            triangulate: true,
-            ..Default::default()
-        },
-    )
+    read_mesh(p, &ParseOptions { triangulate: true })
 }
 
 fn pts(m: &MeshData) -> Vec<[f64; 3]> {

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{cgal_mesh, example};
-use loopsurf::{ControlNet, Density, Mesher, Surface, SurfaceMesh};
+use loopsurf::{ControlNet, Density, LimitCurve, Mesher, Surface, SurfaceMesh};
 use std::collections::HashMap;
 
 fn cgal(name: &str, angle: Option<f64>) -> Option<ControlNet> {
@@ -413,7 +413,11 @@ fn check_labels(net: &ControlNet, surface: &Surface, mesh: &SurfaceMesh, what: &
         let [ta, tb] = found.params[i];
         assert!(ta < tb, "{what}: {a}-{b} runs against its curve");
         for (v, t) in [(a, ta), (b, tb)] {
-            let x = surface.curve_eval(c as usize, t).unwrap().x;
+            let x = LimitCurve::new(surface, c as usize)
+                .unwrap()
+                .eval(t)
+                .unwrap()
+                .x;
             assert!(
                 x.distance(mesh.points[v as usize]) <= tol,
                 "{what}: vertex {v} is not curve {c} at t = {t}"

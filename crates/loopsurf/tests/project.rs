@@ -8,6 +8,7 @@
 mod common;
 
 use common::{cgal_mesh, example, Lcg};
+use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Error, Snap, Surface};
 
 /// What the checks of one surface found.
@@ -44,7 +45,7 @@ impl<'a> Checker<'a> {
     fn project(&mut self, p: DVec3, guess: (usize, f64, f64), what: &str) -> Snap {
         let (surface, diagonal) = (&self.surface, self.diagonal);
         let what = format!("{}: {what}: p {p:?}, guess {guess:?}", self.name);
-        let s = surface.project(p, guess.0, guess.1, guess.2).unwrap();
+        let s = snap::project(surface, p, guess.0, guess.1, guess.2).unwrap();
         assert_eq!(s.lower_bound, 0.0, "{what}: a local answer proves nothing");
         let at = surface.eval(s.tri, s.v, s.w).unwrap();
         assert_eq!(at.x, s.point, "{what}: the point is the surface's");
@@ -82,7 +83,7 @@ impl<'a> Checker<'a> {
         }
         // The certified global answer is never farther (by more than its
         // tolerance); usually it is the same point.
-        let global = surface.closest_point(p).unwrap();
+        let global = snap::closest_point(surface, p).unwrap();
         assert!(
             global.distance <= s.distance + 1e-12 * diagonal,
             "{what}: the certified snap is farther ({global:?})"
@@ -118,10 +119,8 @@ impl<'a> Checker<'a> {
         for k in 0..walks {
             let t = (rng.next() * self.net.triangles().len() as f64) as usize;
             let (v, w) = (0.1 + 0.3 * rng.next(), 0.1 + 0.3 * rng.next());
-            let mut here = self
-                .surface
-                .closest_point(self.surface.point(t, v, w).unwrap())
-                .unwrap();
+            let mut here =
+                snap::closest_point(&self.surface, self.surface.point(t, v, w).unwrap()).unwrap();
             let mut guess = (here.tri, here.v, here.w);
             let mut heading = rng.direction();
             for i in 0..steps {
@@ -135,10 +134,9 @@ impl<'a> Checker<'a> {
                 heading = (heading + 0.3 * rng.direction())
                     .reject_from(n)
                     .normalize_or(n.any_orthonormal_vector());
-                here = self
-                    .surface
-                    .closest_point(here.point + 1e-3 * self.diagonal * heading)
-                    .unwrap();
+                here =
+                    snap::closest_point(&self.surface, here.point + 1e-3 * self.diagonal * heading)
+                        .unwrap();
             }
         }
     }
@@ -207,13 +205,13 @@ fn bad_input_is_an_error() {
     let p = DVec3::new(0.1, 0.2, 0.3);
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         assert!(matches!(
-            surface.project(DVec3::new(0.0, bad, 0.0), 0, 0.2, 0.2),
+            snap::project(&surface, DVec3::new(0.0, bad, 0.0), 0, 0.2, 0.2),
             Err(Error::InvalidArgument(_))
         ));
     }
     let triangles = surface.net().triangles().len();
     assert!(matches!(
-        surface.project(p, triangles, 0.2, 0.2),
+        snap::project(&surface, p, triangles, 0.2, 0.2),
         Err(Error::InvalidArgument(_))
     ));
     for (v, w) in [
@@ -224,7 +222,10 @@ fn bad_input_is_an_error() {
         (0.2, f64::INFINITY),
     ] {
         assert!(
-            matches!(surface.project(p, 0, v, w), Err(Error::BadParameter { .. })),
+            matches!(
+                snap::project(&surface, p, 0, v, w),
+                Err(Error::BadParameter { .. })
+            ),
             "({v}, {w})"
         );
     }
@@ -237,7 +238,7 @@ fn bad_input_is_an_error() {
         (1.0, 0.0),
         (0.0, 1.0),
     ] {
-        let s = surface.project(p, 0, v, w).unwrap();
+        let s = snap::project(&surface, p, 0, v, w).unwrap();
         assert!(
             s.v >= 0.0 && s.w >= 0.0 && s.v + s.w <= 1.0,
             "({v}, {w}): {s:?}"

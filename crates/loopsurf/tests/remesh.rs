@@ -6,7 +6,8 @@
 mod common;
 
 use common::{cgal_mesh, example};
-use loopsurf::{ControlNet, DVec3, Remesher, Surface, SurfaceMesh};
+use loopsurf::snap;
+use loopsurf::{ControlNet, DVec3, LimitCurve, Remesher, Surface, SurfaceMesh};
 use std::collections::{HashMap, HashSet};
 
 fn cgal(name: &str, angle: f64) -> Option<ControlNet> {
@@ -136,8 +137,9 @@ fn check_invariants(name: &str, surface: &Surface, mesh: &SurfaceMesh) {
     for (pair, &curve) in mesh.hard_edges.iter().zip(&mesh.hard_edge_curves) {
         for &v in pair {
             let x = mesh.points[v as usize];
-            let d = surface
-                .curve_closest_point(curve as usize, x)
+            let d = LimitCurve::new(surface, curve as usize)
+                .unwrap()
+                .closest_point(x)
                 .unwrap()
                 .distance;
             assert!(
@@ -210,18 +212,16 @@ fn facing_against(name: &str, surface: &Surface, mesh: &SurfaceMesh, step: usize
         let [a, b, c] = mesh.triangles[t].map(|i| mesh.points[i as usize]);
         let n = (b - a).cross(c - a).normalize();
         let centroid = (a + b + c) / 3.0;
-        let snap = surface.closest_point(centroid).unwrap();
+        let snap = snap::closest_point(surface, centroid).unwrap();
         let normal = surface.normal(snap.tri, snap.v, snap.w).unwrap();
         if n.dot(normal) <= 0.0 {
             let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
             let own = mesh.triangles[t].iter().any(|&i| {
                 let at = mesh.params[i as usize];
-                surface
-                    .project(centroid, at.tri as usize, at.v, at.w)
-                    .is_ok_and(|p| {
-                        let m = surface.normal(p.tri, p.v, p.w).unwrap();
-                        p.distance <= 0.01 * longest && m.dot(n) > 0.0 && m.dot(normal) < -0.9
-                    })
+                snap::project(surface, centroid, at.tri as usize, at.v, at.w).is_ok_and(|p| {
+                    let m = surface.normal(p.tri, p.v, p.w).unwrap();
+                    p.distance <= 0.01 * longest && m.dot(n) > 0.0 && m.dot(normal) < -0.9
+                })
             });
             if own {
                 at_folds += 1;
@@ -660,9 +660,9 @@ fn high_valence_fans_do_not_run_away() {
     // valence-22 vertex) while it stays within 4e-7 of the plane. A
     // triangle there faces one way or the other: every one that faces
     // against the nearest point's normal lies on a patch that folds
-    // (`Surface::folded_patches`, checked against the refined net in
+    // (`folds::folded_patches`, checked against the refined net in
     // tests/folds.rs) or on one sharing a control vertex with it.
-    let folded = surface.folded_patches();
+    let folded = loopsurf::folds::folded_patches(&surface);
     assert!(!folded.is_empty(), "anchor: no folded patch found");
     let corners: HashSet<u32> = folded.iter().flat_map(|&t| net.triangles()[t]).collect();
     let against = facing_against("anchor", &surface, &mesh, 1);

@@ -4,8 +4,8 @@
 
 mod common;
 
-use loopsurf::io::{write_off, write_stl, ReadOptions};
-use loopsurf::repair::{Repair, Repairs};
+use loopsurf::io::{write_off, write_stl};
+use loopsurf::repair::{ReadOptions, Repair, Repairs};
 use loopsurf::{examples, ControlNet, DVec3, Error, Surface};
 use std::path::PathBuf;
 

@@ -5,6 +5,7 @@
 mod common;
 
 use common::{cgal_mesh, example, Lcg};
+use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Snap, Surface, SurfaceMode};
 
 struct Reference {
@@ -136,7 +137,7 @@ fn check_mesh(name: &str, net: &ControlNet, queries: usize) {
     }
     for (i, (kind, p)) in points.into_iter().enumerate() {
         let what = format!("{name}: {kind} point {i} {p:?}");
-        let s = surface.closest_point(p).unwrap();
+        let s = snap::closest_point(&surface, p).unwrap();
         check_consistent(&surface, p, &s, diagonal, &what);
         let r = reference.distance(&surface, p);
         assert!(
@@ -146,9 +147,7 @@ fn check_mesh(name: &str, net: &ControlNet, queries: usize) {
             (s.distance - r) / diagonal
         );
         // From a hint elsewhere, the same global answer.
-        let hint = surface
-            .snap_near(p, i % net.triangles().len(), 0.2, 0.2)
-            .unwrap();
+        let hint = snap::snap_near(&surface, p, i % net.triangles().len(), 0.2, 0.2).unwrap();
         assert!(
             (hint.distance - s.distance).abs() <= 1e-10 * diagonal,
             "{what}: snap_near"
@@ -194,15 +193,13 @@ fn points_on_the_surface_snap_to_themselves() {
                 (v, w)
             };
             let x = surface.eval(t, v, w).unwrap().x;
-            let s = surface.closest_point(x).unwrap();
+            let s = snap::closest_point(&surface, x).unwrap();
             assert!(
                 s.distance <= 1e-13 * diagonal,
                 "{name}: triangle {t} ({v}, {w}): {:e}",
                 s.distance / diagonal
             );
-            let near = surface
-                .snap_near(x, t, (v + 0.1).min(0.5), w * 0.5)
-                .unwrap();
+            let near = snap::snap_near(&surface, x, t, (v + 0.1).min(0.5), w * 0.5).unwrap();
             assert!(near.distance <= 1e-13 * diagonal, "{name}: snap_near");
         }
     }
@@ -297,7 +294,7 @@ fn several_minima_in_one_patch() {
         ],
     ] {
         let p = DVec3::from_array(p);
-        let s = surface.closest_point(p).unwrap();
+        let s = snap::closest_point(&surface, p).unwrap();
         check_consistent(&surface, p, &s, diagonal, "pig fold");
         let r = reference.distance(&surface, p);
         assert!(
@@ -320,7 +317,7 @@ fn concave_and_equidistant_points() {
         0.5 * (lo + hi),
         0.5 * (lo + hi) + DVec3::new(0.0, 0.0, 0.01),
     ] {
-        let s = surface.closest_point(p).unwrap();
+        let s = snap::closest_point(&surface, p).unwrap();
         let r = reference.distance(&surface, p);
         assert!(
             (s.distance - r).abs() <= 1e-10 * net.bbox_diagonal(),
@@ -349,7 +346,7 @@ fn thin_features_and_points_between_two_sheets() {
         let (x, y) = (rng.next() - 0.5, rng.next() - 0.5);
         for z in [0.0, 0.001, -0.003] {
             let p = DVec3::new(x, y, z);
-            let s = surface.closest_point(p).unwrap();
+            let s = snap::closest_point(&surface, p).unwrap();
             let r = reference.distance(&surface, p);
             assert!(
                 (s.distance - r).abs() <= 1e-10 * diagonal,
@@ -365,11 +362,9 @@ fn thin_features_and_points_between_two_sheets() {
 fn non_finite_points_and_bad_hints_are_errors() {
     let net = example("sphere", None);
     let surface = Surface::new(&net).unwrap();
-    assert!(surface
-        .closest_point(DVec3::new(f64::NAN, 0.0, 0.0))
-        .is_err());
-    assert!(surface.snap_near(DVec3::ZERO, 99999, 0.1, 0.1).is_err());
-    assert!(surface.snap_near(DVec3::ZERO, 0, 0.9, 0.9).is_err());
+    assert!(snap::closest_point(&surface, DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
+    assert!(snap::snap_near(&surface, DVec3::ZERO, 99999, 0.1, 0.1).is_err());
+    assert!(snap::snap_near(&surface, DVec3::ZERO, 0, 0.9, 0.9).is_err());
 }
 
 #[test]
@@ -377,7 +372,7 @@ fn the_index_is_counted_once_built() {
     let net = example("viking", Some(30.0));
     let surface = Surface::new(&net).unwrap();
     let before = surface.memory_bytes();
-    surface.closest_point(DVec3::ZERO).unwrap();
+    snap::closest_point(&surface, DVec3::ZERO).unwrap();
     let after = surface.memory_bytes();
     // At least one container (~150 bytes) per control triangle.
     assert!(

@@ -11,6 +11,7 @@
 mod common;
 
 use common::{bicone, cgal_mesh, example, Lcg};
+use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Surface, SurfaceMode, VertexKind};
 use rayon::prelude::*;
 
@@ -95,7 +96,7 @@ fn check(name: &str, net: &ControlNet, mode: SurfaceMode, per_kind: usize) -> us
     let points = feature_points(net, per_kind, &mut rng);
     assert!(!points.is_empty(), "{name}: no query points");
     for (kind, p) in &points {
-        let s = surface.closest_point(*p).unwrap();
+        let s = snap::closest_point(&surface, *p).unwrap();
         let sampled = sample
             .par_iter()
             .map(|x| (*x - *p).length())
@@ -121,7 +122,7 @@ fn check(name: &str, net: &ControlNet, mode: SurfaceMode, per_kind: usize) -> us
         );
         // From a far hint (as the mesher's chord check and adapt's distance
         // report call it), the same certified answer.
-        let near = surface.snap_near(*p, 0, 0.2, 0.2).unwrap();
+        let near = snap::snap_near(&surface, *p, 0, 0.2, 0.2).unwrap();
         assert!(
             near.distance <= sampled + 1e-13 * diagonal
                 && near.lower_bound <= sampled + 1e-15 * diagonal
@@ -153,7 +154,7 @@ fn shark_reproduction() {
         -0.41091615225273437,
         -0.15415774687578127,
     );
-    let s = surface.closest_point(p).unwrap();
+    let s = snap::closest_point(&surface, p).unwrap();
     let witness = (surface.eval(6027, 0.140625, 0.859375).unwrap().x - p).length();
     assert!(witness < 4.08e-4);
     assert!(
@@ -274,7 +275,7 @@ fn points_at_special_vertices() {
                 let x = surface.eval(t, v, w).unwrap().x;
                 for offset in [0.0, 1e-9, 1e-6] {
                     let p = x + offset * diagonal * rng.direction();
-                    let s = surface.closest_point(p).unwrap();
+                    let s = snap::closest_point(&surface, p).unwrap();
                     let what = format!("{name}: vertex {vertex}, offset {offset}");
                     assert!(
                         s.distance <= offset * diagonal + 1e-12 * diagonal,
@@ -311,8 +312,8 @@ fn tolerance_is_honoured_and_checked() {
     let mut rng = Lcg(9);
     for _ in 0..50 {
         let p = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
-        let tight = surface.closest_point(p).unwrap();
-        let loose = surface.closest_point_within(p, 1e-6).unwrap();
+        let tight = snap::closest_point(&surface, p).unwrap();
+        let loose = snap::closest_point_within(&surface, p, 1e-6).unwrap();
         assert!(tight.distance - tight.lower_bound <= 1e-12 * diagonal);
         assert!(loose.distance - loose.lower_bound <= 1e-6 * diagonal);
         assert!(loose.lower_bound <= tight.distance + 1e-15 * diagonal);
@@ -320,7 +321,7 @@ fn tolerance_is_honoured_and_checked() {
     }
     for bad in [0.0, -1e-3, 1.0, f64::NAN, f64::INFINITY] {
         assert!(
-            surface.closest_point_within(DVec3::ZERO, bad).is_err(),
+            snap::closest_point_within(&surface, DVec3::ZERO, bad).is_err(),
             "{bad}"
         );
     }

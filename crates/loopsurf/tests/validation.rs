@@ -175,7 +175,7 @@ fn polygon_needs_triangulate() {
     ));
     assert!(msg.contains(":7"), "{msg}");
     let path = write("quad_ok.off", &quad);
-    let opts = loopsurf::io::ReadOptions {
+    let opts = loopsurf::repair::ReadOptions {
         triangulate: true,
         ..Default::default()
     };

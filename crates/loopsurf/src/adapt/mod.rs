@@ -17,6 +17,7 @@ use crate::error::{Error, Result};
 use crate::features::Features;
 use crate::net::ControlNet;
 use crate::parameters::{SurfacePoint, CORNERS};
+use crate::snap::snap_near;
 use crate::surface::{Surface, SurfaceMode};
 use crate::topology::Topology;
 use glam::{DVec2, DVec3};
@@ -371,7 +372,7 @@ impl AdaptiveMesh {
             .points()
             .par_iter()
             .zip(&self.params)
-            .map(|(&x, p)| Ok(surface.snap_near(x, p.tri as usize, p.v, p.w)?.distance))
+            .map(|(&x, p)| Ok(snap_near(surface, x, p.tri as usize, p.v, p.w)?.distance))
             .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
     }
 }

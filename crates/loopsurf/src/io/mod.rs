@@ -62,30 +62,16 @@ pub struct MeshData {
     /// Cart3D only: the component ID of each triangle, when the file has them.
     pub components: Option<Vec<i32>>,
     /// The polygon faces split into triangles under
-    /// [`ReadOptions::triangulate`], in file order.
+    /// [`ParseOptions::triangulate`], in file order.
     pub polygons: Vec<Polygon>,
 }
 
-/// Options that change how files are read.
+/// Options that change how files are parsed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ReadOptions {
+pub struct ParseOptions {
     /// Split polygons into triangles (by ear clipping, so non-convex ones
-    /// too) instead of rejecting them. Applied by the parsers.
+    /// too) instead of rejecting them.
     pub triangulate: bool,
-    /// Repairs of the triangulation read, applied by
-    /// [`crate::ControlNet::read_with`] before validation; parsers ignore
-    /// them.
-    pub repairs: crate::repair::Repairs,
-}
-
-impl ReadOptions {
-    /// Everything `--repair` turns on: split polygons and every repair.
-    pub fn repair_all() -> ReadOptions {
-        ReadOptions {
-            triangulate: true,
-            repairs: crate::repair::Repairs::all(),
-        }
-    }
 }
 
 /// The file formats loopsurf knows, named by extension.
@@ -117,7 +103,7 @@ impl Format {
 
 /// Reads a surface triangulation, choosing the format from the extension
 /// (`.off`, `.obj`, `.ply`, `.stl`, `.tri`; case-insensitive).
-pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
+pub fn read_mesh(path: &Path, opts: &ParseOptions) -> Result<MeshData> {
     // An unknown extension is refused before the file is read.
     if matches!(Format::of(path), None | Some(Format::Vtu)) {
         return Err(Error::UnknownFormat {
@@ -130,7 +116,7 @@ pub fn read_mesh(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
 /// [`read_mesh`] of bytes already in memory (a file received over MPI, a
 /// fuzzer's input): the format is the one `path`'s extension names, and
 /// `path` names the source in errors; nothing is read from disk.
-pub fn parse_mesh(data: Vec<u8>, path: &Path, opts: &ReadOptions) -> Result<MeshData> {
+pub fn parse_mesh(data: Vec<u8>, path: &Path, opts: &ParseOptions) -> Result<MeshData> {
     let mut mesh = match Format::of(path) {
         Some(Format::Off) => off::parse_off(&data, opts, path),
         Some(Format::Obj) => obj::parse_obj(&data, opts, path),
@@ -195,7 +181,7 @@ fn push_face(
     face: usize,
     corners: &[i64],
     line: Option<usize>,
-    opts: &ReadOptions,
+    opts: &ParseOptions,
     path: &Path,
 ) -> Result<()> {
     if corners.len() > 3 && !opts.triangulate {

@@ -13,15 +13,15 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::text::{lines, next, parse, strip_comment};
-use super::{push_face, read_bytes, MeshData, ReadOptions};
+use super::{push_face, read_bytes, MeshData, ParseOptions};
 use crate::error::{Error, Result};
 
 /// Reads an OBJ file.
-pub fn read_obj(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
+pub fn read_obj(path: &Path, opts: &ParseOptions) -> Result<MeshData> {
     parse_obj(&read_bytes(path)?, opts, path)
 }
 
-pub(crate) fn parse_obj(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
+pub(crate) fn parse_obj(data: &[u8], opts: &ParseOptions, path: &Path) -> Result<MeshData> {
     let malformed = |e: Error| e.in_file(path, None);
     let mut mesh = MeshData::default();
     let mut faces = 0usize;

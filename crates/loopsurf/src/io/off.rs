@@ -12,15 +12,15 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::text::{lines, next, parse, strip_comment};
-use super::{capacity, push_face, read_bytes, MeshData, ReadOptions};
+use super::{capacity, push_face, read_bytes, MeshData, ParseOptions};
 use crate::error::{Error, Result};
 
 /// Reads an OFF file.
-pub fn read_off(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
+pub fn read_off(path: &Path, opts: &ParseOptions) -> Result<MeshData> {
     parse_off(&read_bytes(path)?, opts, path)
 }
 
-pub(crate) fn parse_off(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
+pub(crate) fn parse_off(data: &[u8], opts: &ParseOptions, path: &Path) -> Result<MeshData> {
     let malformed = |e: Error| e.in_file(path, None);
     let mut mesh = MeshData::default();
     let (mut first, mut counts_line) = (true, None);

@@ -17,13 +17,13 @@ use ply_rs::ply::{
     ElementDef, Encoding, Header, Property, PropertyAccess, PropertyType, ScalarType,
 };
 
-use super::{capacity, push_face, read_bytes, MeshData, ReadOptions};
+use super::{capacity, push_face, read_bytes, MeshData, ParseOptions};
 use crate::error::{Error, Result};
 
 /// Reads a PLY file: element `vertex` (x, y, z of any numeric type) and
 /// element `face` (list `vertex_indices` or `vertex_index` of any integer
 /// type). Other elements and properties are skipped.
-pub fn read_ply(path: &Path, opts: &ReadOptions) -> Result<MeshData> {
+pub fn read_ply(path: &Path, opts: &ParseOptions) -> Result<MeshData> {
     parse_ply(&read_bytes(path)?, opts, path)
 }
 
@@ -99,7 +99,7 @@ struct HeaderScan {
     element_lines: Vec<(String, usize)>,
 }
 
-pub(crate) fn parse_ply(data: &[u8], opts: &ReadOptions, path: &Path) -> Result<MeshData> {
+pub(crate) fn parse_ply(data: &[u8], opts: &ParseOptions, path: &Path) -> Result<MeshData> {
     let located = |e: Error| e.in_file(path, None);
     let scan = scan_header(data).map_err(located)?;
     let parser = Parser::<Elem>::new();

@@ -5,6 +5,7 @@
 use super::SurfaceMesh;
 use crate::error::Result;
 use crate::geometry::{area_normal, max_cosine};
+use crate::snap::snap_near;
 use crate::surface::{Curvature, Surface};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -187,7 +188,7 @@ impl SurfaceMesh {
                     let w = (0..3).map(|k| weights[k] * params[k].w).sum::<f64>();
                     (params[0].tri, v, w)
                 };
-                Ok(surface.snap_near(x, tri as usize, v, w)?.distance)
+                Ok(snap_near(surface, x, tri as usize, v, w)?.distance)
             })
             .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
     }

@@ -32,7 +32,7 @@ use std::sync::OnceLock;
 /// to meet the tolerance at its centroid (see the module doc).
 const CHORD_FACTOR: f64 = 6.0 * 9.0 / 16.0;
 
-/// On a patch that folds over itself ([`Surface::is_folded`]), a vertex's
+/// On a patch that folds over itself ([`crate::folds::is_folded`]), a vertex's
 /// own curvature may make its size at most this factor smaller than its
 /// control triangle's. There the curvature says nothing of the chord
 /// error: in anchor.off's flat fans around vertices of valence 34, 22 and
@@ -60,7 +60,7 @@ pub(crate) enum Sizing {
         floor: f64,
         gradation: f64,
         /// Per control triangle, once asked: whether its patch folds
-        /// ([`Surface::is_folded`]; see [`VERTEX_REFINEMENT`]).
+        /// ([`crate::folds::is_folded`]; see [`VERTEX_REFINEMENT`]).
         folded: Vec<OnceLock<bool>>,
     },
 }
@@ -115,8 +115,8 @@ fn largest_curvature(surface: &Surface, t: usize) -> f64 {
         };
         let samples: Vec<_> = (0..=8)
             .filter_map(|i| {
-                surface
-                    .curve_eval(curve as usize, j as f64 + i as f64 / 8.0)
+                crate::curve::LimitCurve::new(surface, curve as usize)
+                    .and_then(|c| c.eval(j as f64 + i as f64 / 8.0))
                     .ok()
             })
             .collect();
@@ -203,7 +203,8 @@ impl Sizing {
                         let k = curvature_at(surface, t, v.at.v, v.at.w);
                         let own = (CHORD_FACTOR * tolerance / k).sqrt();
                         let least = per_triangle[t] / VERTEX_REFINEMENT;
-                        let own = if own < least && *folded[t].get_or_init(|| surface.is_folded(t))
+                        let own = if own < least
+                            && *folded[t].get_or_init(|| crate::folds::is_folded(surface, t))
                         {
                             least
                         } else {

@@ -42,14 +42,12 @@ pub(super) fn chord_errors(work: &Remeshing, tolerance: f64) -> Vec<(Vec<u32>, f
                 .map(|v| v.at)
                 .unwrap_or_else(|| work.placer.guess_in(&work.vertices[ids[0] as usize], face));
             let surface = work.placer.surface;
-            let mut d = surface
-                .project(x, guess.tri as usize, guess.v, guess.w)
+            let mut d = crate::snap::project(surface, x, guess.tri as usize, guess.v, guess.w)
                 .map_or(f64::INFINITY, |s| s.distance);
             if d > tolerance {
                 // A local minimum may be the wrong one (across a fold or a
                 // crease): the certified snap decides.
-                d = surface
-                    .snap_near(x, guess.tri as usize, guess.v, guess.w)
+                d = crate::snap::snap_near(surface, x, guess.tri as usize, guess.v, guess.w)
                     .map_or(f64::INFINITY, |s| s.distance);
             }
             (ids.clone(), d)

@@ -55,7 +55,8 @@ impl Remeshing<'_> {
             let s = self.placer.surface;
             let from = ids.iter().map(|&v| vertex(v)).find(|v| v.is_free());
             let centroid = from.and_then(|v| {
-                s.project(
+                crate::snap::project(
+                    s,
                     (p[0] + p[1] + p[2]) / 3.0,
                     v.at.tri as usize,
                     v.at.v,
@@ -74,8 +75,7 @@ impl Remeshing<'_> {
         // face), and there its centroid lies far off the surface.
         let s = self.placer.surface;
         let at = self.placer.guess_in(vertex(ids[0]), face);
-        let off = s
-            .project((p[0] + p[1] + p[2]) / 3.0, at.tri as usize, at.v, at.w)
+        let off = crate::snap::project(s, (p[0] + p[1] + p[2]) / 3.0, at.tri as usize, at.v, at.w)
             .map_or(0.0, |snap| snap.distance);
         if off * off > OFF_SURFACE * OFF_SURFACE * scale {
             return f64::NEG_INFINITY;

@@ -68,9 +68,7 @@ impl<'a> Placer<'a> {
     /// from `guess`; `None` when that point lies in another face than
     /// `face` (the move would cross a crease) or has no tangent plane.
     pub fn free(&self, target: DVec3, guess: SurfacePoint, face: u32) -> Option<Vertex> {
-        let snap = self
-            .surface
-            .project(target, guess.tri as usize, guess.v, guess.w)
+        let snap = crate::snap::project(self.surface, target, guess.tri as usize, guess.v, guess.w)
             .ok()?;
         if self.face_of[snap.tri] != face || self.on_feature(snap.tri, snap.v, snap.w) {
             return None;
@@ -158,9 +156,8 @@ impl<'a> Placer<'a> {
     pub fn on_curve(&self, target: DVec3, curve: u32, t: f64, t0: f64, t1: f64) -> Option<Vertex> {
         let mid = self.mid_t(curve, t0, t1);
         let halfway = self.at_curve(curve, mid).ok()?;
-        let projected = self
-            .surface
-            .curve_project(curve as usize, target, t)
+        let projected = crate::curve::LimitCurve::new(self.surface, curve as usize)
+            .and_then(|c| c.project(target, t))
             .ok()
             .filter(|s| self.between(curve, s.t, t0, t1, mid))
             .and_then(|s| self.at_curve(curve, s.t).ok());
@@ -219,7 +216,8 @@ impl<'a> Placer<'a> {
     /// curve's first side, and the point evaluated there (so that the
     /// vertex is exactly `eval` of its parameters).
     pub fn at_curve(&self, curve: u32, t: f64) -> Result<Vertex> {
-        let sides = self.surface.curve_surface_points(curve as usize, t)?;
+        let sides =
+            crate::curve::LimitCurve::new(self.surface, curve as usize)?.surface_points(t)?;
         let at = sides[0].1;
         Ok(Vertex {
             x: self.surface.point(at.tri as usize, at.v, at.w)?,
@@ -257,9 +255,8 @@ impl<'a> Placer<'a> {
     pub fn guess_in(&self, v: &Vertex, face: u32) -> SurfacePoint {
         match v.kind {
             Kind::Free => v.at,
-            Kind::Curve { curve, t } => self
-                .surface
-                .curve_surface_points(curve as usize, t)
+            Kind::Curve { curve, t } => crate::curve::LimitCurve::new(self.surface, curve as usize)
+                .and_then(|c| c.surface_points(t))
                 .ok()
                 .and_then(|sides| sides.into_iter().find(|s| s.0 == face).map(|s| s.1))
                 .unwrap_or(v.at),

@@ -18,7 +18,7 @@
 //! only welding can remove some, and says which.
 
 use crate::error::{Error, Result};
-use crate::io::MeshData;
+use crate::io::{MeshData, ParseOptions};
 
 mod orient;
 mod split;
@@ -58,6 +58,35 @@ impl Repairs {
     /// Whether any repair is asked for.
     pub fn any(&self) -> bool {
         *self != Repairs::default()
+    }
+}
+
+/// How to read a file into a control net ([`crate::ControlNet::read_with`]):
+/// how to parse it, then which repairs to apply before validation. It
+/// lives here, above [`crate::io`], because the parsers know nothing of
+/// repairs.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ReadOptions {
+    /// Split polygons into triangles ([`ParseOptions::triangulate`]).
+    pub triangulate: bool,
+    /// Repairs of the triangulation read, applied before validation.
+    pub repairs: Repairs,
+}
+
+impl ReadOptions {
+    /// Everything `--repair` turns on: split polygons and every repair.
+    pub fn repair_all() -> ReadOptions {
+        ReadOptions {
+            triangulate: true,
+            repairs: Repairs::all(),
+        }
+    }
+
+    /// What the parser is asked to do.
+    pub fn parse_options(&self) -> ParseOptions {
+        ParseOptions {
+            triangulate: self.triangulate,
+        }
     }
 }
 

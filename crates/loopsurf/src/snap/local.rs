@@ -12,7 +12,7 @@
 //! ones. At irregular vertices, where the parametrisation is singular,
 //! stalled steps are stretched and the walk goes on around the vertex.
 //!
-//! The walk is the whole cost of a local projection (`Surface::project`),
+//! The walk is the whole cost of a local projection (`snap::project`),
 //! so it spends evaluations sparingly: a step that leaves a triangle across
 //! a smooth edge is tried whole in the neighbour, and the solve stops once
 //! the predicted gain is lost in the round-off of f (taking that last step,

@@ -47,6 +47,7 @@ use index::Content;
 pub(crate) use index::SnapIndex;
 pub use local::Snap;
 use piece::{Piece, Shape};
+pub use project::{project, project_in_face};
 
 use crate::error::{Error, Result};
 use crate::surface::Surface;
@@ -66,129 +67,127 @@ pub const MAX_SPLITS: usize = 4096;
 /// the coordinates near 1, where finer dyadic triangles stop being exact.
 const MAX_LEVEL: u32 = 44;
 
-impl Surface {
-    /// The point of the surface nearest to `p` (the global minimum of the
-    /// distance), with its triangle and parameters and a proven lower bound
-    /// on the distance within [`DEFAULT_TOLERANCE`] × diagonal of it. Where
-    /// several points are equally near, one of them.
-    pub fn closest_point(&self, p: DVec3) -> Result<Snap> {
-        self.closest_point_within(p, DEFAULT_TOLERANCE)
-    }
+/// The point of the surface nearest to `p` (the global minimum of the
+/// distance), with its triangle and parameters and a proven lower bound
+/// on the distance within [`DEFAULT_TOLERANCE`] × diagonal of it. Where
+/// several points are equally near, one of them.
+pub fn closest_point(surface: &Surface, p: DVec3) -> Result<Snap> {
+    closest_point_within(surface, p, DEFAULT_TOLERANCE)
+}
 
-    /// [`Surface::closest_point`] with a certificate tolerance of
-    /// `tolerance` × diagonal: the search stops once no region it has not
-    /// closed could hold a point nearer by more than that. Looser is
-    /// faster.
-    pub fn closest_point_within(&self, p: DVec3, tolerance: f64) -> Result<Snap> {
-        check_point(p)?;
-        check_tolerance(tolerance)?;
-        Ok(self.search(p, None, tolerance))
-    }
+/// [`closest_point`] with a certificate tolerance of
+/// `tolerance` × diagonal: the search stops once no region it has not
+/// closed could hold a point nearer by more than that. Looser is
+/// faster.
+pub fn closest_point_within(surface: &Surface, p: DVec3, tolerance: f64) -> Result<Snap> {
+    check_point(p)?;
+    check_tolerance(tolerance)?;
+    Ok(search(surface, p, None, tolerance))
+}
 
-    /// [`Surface::closest_point`] starting from a point known to be near
-    /// the answer (a neighbouring query's result, say): the local solve
-    /// walks from the hint across triangles, then the global search runs
-    /// with that distance as its bound — usually only confirming it.
-    pub fn snap_near(&self, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
-        check_point(p)?;
-        let (v, w) = self.checked_guess(tri, v, w)?;
-        let seed = local::descend(self, p, tri, v, w);
-        Ok(self.search(p, Some(seed.0), DEFAULT_TOLERANCE))
-    }
+/// [`closest_point`] starting from a point known to be near
+/// the answer (a neighbouring query's result, say): the local solve
+/// walks from the hint across triangles, then the global search runs
+/// with that distance as its bound — usually only confirming it.
+pub fn snap_near(surface: &Surface, p: DVec3, tri: usize, v: f64, w: f64) -> Result<Snap> {
+    check_point(p)?;
+    let (v, w) = checked_guess(surface, tri, v, w)?;
+    let seed = local::descend(surface, p, tri, v, w);
+    Ok(search(surface, p, Some(seed.0), DEFAULT_TOLERANCE))
+}
 
-    /// A guess (tri, v, w), validated like any query and with round-off
-    /// outside the triangle clamped.
-    pub(crate) fn checked_guess(&self, tri: usize, v: f64, w: f64) -> Result<(f64, f64)> {
-        self.eval(tri, v, w)?;
-        let (v, w) = (v.max(0.0), w.max(0.0));
-        Ok(if v + w > 1.0 {
-            (v / (v + w), w / (v + w))
-        } else {
-            (v, w)
-        })
-    }
+/// A guess (tri, v, w), validated like any query and with round-off
+/// outside the triangle clamped.
+fn checked_guess(surface: &Surface, tri: usize, v: f64, w: f64) -> Result<(f64, f64)> {
+    surface.eval(tri, v, w)?;
+    let (v, w) = (v.max(0.0), w.max(0.0));
+    Ok(if v + w > 1.0 {
+        (v / (v + w), w / (v + w))
+    } else {
+        (v, w)
+    })
+}
 
-    /// Best-first branch and bound from an optional first candidate.
-    fn search(&self, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Snap {
-        let index = self.derived(SnapIndex::new);
-        let mut search = Search {
-            surface: self,
-            p,
-            // A little tighter: near 1e-12 of the diagonal the round-off of
-            // the distances themselves (1e-16 of their size) must not let
-            // the gap exceed what was asked for.
-            tolerance: tolerance * index.diagonal * 0.99,
-            pad: index.piece_pad,
-            best: seed,
-            best_distance: seed.map_or(f64::INFINITY, |b| b.distance),
-            closed: f64::INFINITY,
-            pending: BinaryHeap::with_capacity(64),
-            next: None,
-            pieces: Vec::new(),
-            splits: 0,
-        };
-        search.offer(index.nodes[0].distance(p), Item::Node(0));
-        while let Some((bound, item)) = search.take() {
-            if bound >= search.best_distance - search.tolerance || search.splits > MAX_SPLITS {
-                // Nothing left is below this bound.
-                search.close(bound);
-                break;
+/// Best-first branch and bound from an optional first candidate.
+fn search(surface: &Surface, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Snap {
+    let index = surface.derived(SnapIndex::new);
+    let mut search = Search {
+        surface,
+        p,
+        // A little tighter: near 1e-12 of the diagonal the round-off of
+        // the distances themselves (1e-16 of their size) must not let
+        // the gap exceed what was asked for.
+        tolerance: tolerance * index.diagonal * 0.99,
+        pad: index.piece_pad,
+        best: seed,
+        best_distance: seed.map_or(f64::INFINITY, |b| b.distance),
+        closed: f64::INFINITY,
+        pending: BinaryHeap::with_capacity(64),
+        next: None,
+        pieces: Vec::new(),
+        splits: 0,
+    };
+    search.offer(index.nodes[0].distance(p), Item::Node(0));
+    while let Some((bound, item)) = search.take() {
+        if bound >= search.best_distance - search.tolerance || search.splits > MAX_SPLITS {
+            // Nothing left is below this bound.
+            search.close(bound);
+            break;
+        }
+        match item {
+            Item::Node(i) => match index.nodes[i as usize].content {
+                Content::Children(l, r) => {
+                    for c in [l, r] {
+                        search.offer(index.nodes[c as usize].distance(p), Item::Node(c));
+                    }
+                }
+                Content::Patch(t) => {
+                    let b = index
+                        .cell(0, t as usize)
+                        .lower_bound(p, search.best_distance);
+                    search.offer(b.max(bound), Item::Cell(0, t));
+                }
+            },
+            Item::Cell(k, c) if k < index.level => {
+                for child in 4 * c..4 * c + 4 {
+                    let b = index
+                        .cell(k + 1, child as usize)
+                        .lower_bound(p, search.best_distance);
+                    search.offer(b.max(bound), Item::Cell(k + 1, child));
+                }
             }
-            match item {
-                Item::Node(i) => match index.nodes[i as usize].content {
-                    Content::Children(l, r) => {
-                        for c in [l, r] {
-                            search.offer(index.nodes[c as usize].distance(p), Item::Node(c));
-                        }
-                    }
-                    Content::Patch(t) => {
-                        let b = index
-                            .cell(0, t as usize)
-                            .lower_bound(p, search.best_distance);
-                        search.offer(b.max(bound), Item::Cell(0, t));
-                    }
-                },
-                Item::Cell(k, c) if k < index.level => {
-                    for child in 4 * c..4 * c + 4 {
-                        let b = index
-                            .cell(k + 1, child as usize)
-                            .lower_bound(p, search.best_distance);
-                        search.offer(b.max(bound), Item::Cell(k + 1, child));
+            Item::Cell(_, cell) => {
+                let cell = cell as usize;
+                if search.best.is_none() {
+                    // The first solve walks to a local minimum of the
+                    // surface: a good bound to prune with.
+                    let (tri, uv) = index.start(cell, p);
+                    search.improve(local::descend(surface, p, tri, uv.x, uv.y).0);
+                }
+                // Pieces start one level below whole control triangles.
+                let level = index.level.max(1);
+                let first = cell << (2 * (level - index.level));
+                for piece in first..first + (1 << (2 * (level - index.level))) {
+                    let (tri, corners) = cell::cell_corners(piece, level);
+                    let piece = Piece::new(surface, tri, level, corners);
+                    // A special corner's region is bounded more tightly by
+                    // the cell's container than by its own: split it now.
+                    // A polynomial's Bézier hull is tighter: queue it.
+                    match piece.shape {
+                        Shape::Corner { .. } => search.open(piece, bound),
+                        Shape::Poly(_) => search.add(piece, bound),
                     }
                 }
-                Item::Cell(_, cell) => {
-                    let cell = cell as usize;
-                    if search.best.is_none() {
-                        // The first solve walks to a local minimum of the
-                        // surface: a good bound to prune with.
-                        let (tri, uv) = index.start(cell, p);
-                        search.improve(local::descend(self, p, tri, uv.x, uv.y).0);
-                    }
-                    // Pieces start one level below whole control triangles.
-                    let level = index.level.max(1);
-                    let first = cell << (2 * (level - index.level));
-                    for piece in first..first + (1 << (2 * (level - index.level))) {
-                        let (tri, corners) = cell::cell_corners(piece, level);
-                        let piece = Piece::new(self, tri, level, corners);
-                        // A special corner's region is bounded more tightly by
-                        // the cell's container than by its own: split it now.
-                        // A polynomial's Bézier hull is tighter: queue it.
-                        match piece.shape {
-                            Shape::Corner { .. } => search.open(piece, bound),
-                            Shape::Poly(_) => search.add(piece, bound),
-                        }
-                    }
-                }
-                Item::Piece(i) => {
-                    let piece = search.pieces[i as usize].take().expect("opened once");
-                    search.open(piece, bound);
-                }
+            }
+            Item::Piece(i) => {
+                let piece = search.pieces[i as usize].take().expect("opened once");
+                search.open(piece, bound);
             }
         }
-        let mut best = search.best.expect("a surface has at least one triangle");
-        best.lower_bound = search.closed.min(best.distance).max(0.0);
-        best
     }
+    let mut best = search.best.expect("a surface has at least one triangle");
+    best.lower_bound = search.closed.min(best.distance).max(0.0);
+    best
 }
 
 /// The state of one query's search.

@@ -16,8 +16,10 @@
 //! found and their nodes are placed like any others.
 
 use super::super::SurfaceMesh;
+use crate::curve::LimitCurve;
 use crate::error::{Error, Result};
 use crate::parameters::{vertex_point, SurfacePoint};
+use crate::snap::{closest_point, snap_near};
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -145,7 +147,7 @@ fn snap_vertices(
 ) -> Result<(Vec<SurfacePoint>, Vec<DVec3>)> {
     let snaps = points
         .par_iter()
-        .map(|&p| surface.closest_point(p))
+        .map(|&p| closest_point(surface, p))
         .collect::<Result<Vec<_>>>()?;
     let params: Vec<SurfacePoint> = snaps
         .iter()
@@ -175,7 +177,7 @@ fn triangle_faces(
         .map(|tri| {
             let centroid = tri.iter().map(|&i| moved[i as usize]).sum::<DVec3>() / 3.0;
             let p = params[tri[0] as usize];
-            let snap = surface.snap_near(centroid, p.tri as usize, p.v, p.w)?;
+            let snap = snap_near(surface, centroid, p.tri as usize, p.v, p.w)?;
             Ok(face_of[snap.tri])
         })
         .collect()
@@ -242,7 +244,9 @@ fn vertex_curves(
 fn nearest_curve(surface: &Surface, candidates: &[u32], p: DVec3) -> Result<u32> {
     let mut best = (f64::INFINITY, candidates[0]);
     for &c in candidates {
-        let d = surface.curve_closest_point(c as usize, p)?.distance;
+        let d = LimitCurve::new(surface, c as usize)?
+            .closest_point(p)?
+            .distance;
         if d < best.0 {
             best = (d, c);
         }
@@ -264,8 +268,9 @@ fn place_on_curves(
         .map(|(i, list)| {
             let p = points[i];
             if let [c] = list.as_slice() {
-                let snap = surface.curve_closest_point(*c as usize, p)?;
-                let (_, sp) = surface.curve_surface_points(*c as usize, snap.t)?[0];
+                let curve = LimitCurve::new(surface, *c as usize)?;
+                let snap = curve.closest_point(p)?;
+                let (_, sp) = curve.surface_points(snap.t)?[0];
                 return Ok((i, sp));
             }
             let Some(x) = nearest_corner(surface, list, p) else {

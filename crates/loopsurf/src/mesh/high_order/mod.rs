@@ -32,7 +32,7 @@
 //!    triangle: next to an irregular vertex the parameterisation is so
 //!    uneven that a parameter midpoint can lie an edge length off the
 //!    chord. The projection never leaves the element's face
-//!    ([`Surface::project_in_face`]): across a crease the other face may
+//!    ([`project_in_face`]): across a crease the other face may
 //!    be nearer, and a node there would fold the element.
 //!
 //! Every edge's nodes are computed once and shared by the two triangles of
@@ -47,8 +47,10 @@ pub use linear_input::{onto_surface, OntoSurface, DEFAULT_MAX_MOVE};
 pub use validity::{Distance, Validity};
 
 use super::SurfaceMesh;
+use crate::curve::LimitCurve;
 use crate::error::{Error, Result};
 use crate::parameters::{reparameterize, SurfacePoint};
+use crate::snap::{project_in_face, snap_near};
 use crate::surface::{Surface, PARAMETER_TOLERANCE};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -410,16 +412,15 @@ impl Placer<'_> {
     /// do there: next to a dart's tip the curve's speed falls to zero, and
     /// a node at the middle t sits next to the tip and folds the element.
     fn on_curve(&self, curve: u32, ts: [f64; 2], s: f64, ends: [u32; 2]) -> Result<Node> {
-        let c = &self.surface.model().curves()[curve as usize];
+        let limit = LimitCurve::new(self.surface, curve as usize)?;
+        let c = limit.curve();
         let n = c.len() as f64;
         let wrap = |t: f64| if c.is_closed() { t.rem_euclid(n) } else { t };
         let guess = ts[0] + s * (ts[1] - ts[0]);
         let mut t = guess;
         if self.mesh.charts.is_empty() {
             let [xa, xb] = ends.map(|i| self.mesh.points[i as usize]);
-            let snap =
-                self.surface
-                    .curve_project(curve as usize, xa + s * (xb - xa), wrap(guess))?;
+            let snap = limit.project(xa + s * (xb - xa), wrap(guess))?;
             // Back on the unwrapped side of the guess, and between the ends.
             let mut projected = snap.t;
             if c.is_closed() {
@@ -430,7 +431,7 @@ impl Placer<'_> {
                 t = projected;
             }
         }
-        let sides = self.surface.curve_surface_points(curve as usize, wrap(t))?;
+        let sides = limit.surface_points(wrap(t))?;
         let p = sides[0].1;
         Ok((self.surface.point(p.tri as usize, p.v, p.w)?, p))
     }
@@ -491,9 +492,9 @@ impl Placer<'_> {
                 "triangle {t}: none of its vertices {vertices:?} lies on its face {face}"
             )));
         };
-        let mut snap = surface.project_in_face(flat, first.tri as usize, first.v, first.w)?;
+        let mut snap = project_in_face(surface, flat, first.tri as usize, first.v, first.w)?;
         for g in &guesses[1..] {
-            let other = surface.project_in_face(flat, g.tri as usize, g.v, g.w)?;
+            let other = project_in_face(surface, flat, g.tri as usize, g.v, g.w)?;
             if other.distance < snap.distance {
                 snap = other;
             }
@@ -506,7 +507,7 @@ impl Placer<'_> {
             .fold(f64::INFINITY, f64::min);
         if snap.distance > 0.25 * shortest {
             // Still far: the global minimum, if it is on this face.
-            let global = surface.snap_near(flat, first.tri as usize, first.v, first.w)?;
+            let global = snap_near(surface, flat, first.tri as usize, first.v, first.w)?;
             if face_of[global.tri] == face && global.distance < snap.distance {
                 snap = global;
             }

@@ -16,6 +16,7 @@ use super::lagrange::{basis, quadrature, reference_nodes, samples};
 use super::CurvedMesh;
 use crate::error::Result;
 use crate::geometry::unit_normal;
+use crate::snap::{closest_point, snap_near};
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -124,8 +125,8 @@ impl CurvedMesh {
                     let [x, _, _] = apply(b, &points);
                     let nearest = (0..per).fold(0, |m, j| if b[j][0] > b[m][0] { j } else { m });
                     let snap = match self.params.get(ids[nearest] as usize) {
-                        Some(p) => surface.snap_near(x, p.tri as usize, p.v, p.w)?,
-                        None => surface.closest_point(x)?,
+                        Some(p) => snap_near(surface, x, p.tri as usize, p.v, p.w)?,
+                        None => closest_point(surface, x)?,
                     };
                     worst = worst.max(snap.distance);
                 }
