@@ -33,7 +33,7 @@ impl Remeshing<'_> {
         let mut total = 0;
         let mut refused: HashSet<[u32; 4]> = HashSet::new();
         for _ in 0..32 {
-            if self.mesh.num_half_edges() as usize / 3 > limit {
+            if self.triangle_slots() > limit {
                 break;
             }
             let long: Vec<(u32, u32)> = self
