@@ -568,7 +568,7 @@ fn mesh_rejects_bad_options_with_one_line() {
 }
 
 /// `loopsurf adapt`: the summary, a .vtu with parameters and dead flags, and
-/// the seed's Table 1 with `--report`.
+/// Liu & Kondo's Table 1 with `--report`.
 #[test]
 fn adapt_the_torus_writes_its_summary_and_report() {
     let vtu = scratch("torus-adapt.vtu");

@@ -1,4 +1,4 @@
-//! Every CGAL demo mesh, as a new user meets them (issue 19): each loads
+//! Every CGAL demo mesh, as a new user meets them: each loads
 //! plainly, or loads with the option its refusal names, or is refused in
 //! one line that says why. Loaded nets are evaluated; nothing may panic or
 //! hang. `cargo test --release --test cgal_sweep -- --nocapture` prints the

@@ -19,7 +19,7 @@ pub(crate) const GRADING: f64 = 2.0;
 /// lattice (the control triangle itself), from the largest second
 /// derivative along the lattice directions (1,0), (0,1) and (−1,1). The
 /// lattice of level N then deviates by about `bend / N²`. The estimate only
-/// seeds the level; the chord error is measured afterwards and enforced.
+/// starts the level; the chord error is measured afterwards and enforced.
 pub(crate) fn bend(surface: &Surface, t: usize) -> Result<f64> {
     let mut worst: f64 = 0.0;
     for (v, w) in INTERIOR_SAMPLES {
