@@ -730,13 +730,14 @@ fn sorted_half_edges(tris: &[[u32; 3]]) -> Vec<(u64, u32)> {
     order
 }
 
+/// Runs of half-edges with the same ends, as (start, length) in the
+/// sorted order, and the run of each half-edge slot.
+type Groups = (Vec<(usize, usize)>, Vec<u32>);
+
 /// The runs of equal keys in `order`, as (start, length), and each slot's
 /// run; a run of more than two half-edges is a non-manifold edge, and two
 /// running the same way an inconsistent orientation.
-fn group_half_edges(
-    tris: &[[u32; 3]],
-    order: &[(u64, u32)],
-) -> Result<(Vec<(usize, usize)>, Vec<u32>)> {
+fn group_half_edges(tris: &[[u32; 3]], order: &[(u64, u32)]) -> Result<Groups> {
     let mut group_of_slot = vec![0u32; tris.len() * 3];
     let mut groups: Vec<(usize, usize)> = Vec::new(); // (start, len) in `order`
     let mut i = 0;
