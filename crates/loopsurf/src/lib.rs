@@ -1,28 +1,38 @@
 //! loopsurf: a legacy surface triangulation as the control net of a Loop
 //! subdivision surface, queried like a CAD kernel.
 //!
-//! Layering (one-way, like OpenSubdiv's Sdc → Vtr → Far; a module imports
-//! only from the ones before it):
-//! 1. [`rules`] (every subdivision, limit and tangent mask) and
-//!    [`geometry`] (plain triangle measures and edge swaps);
-//! 2. [`io`] (file formats, parse only) and [`repair`] (explicit fixes of
-//!    dirty triangulations);
-//! 3. [`topology`] (connectivity only) → [`parameters`] (surface points
-//!    as (triangle, v, w): corners, control vertices, moving between
+//! Layering, one way like OpenSubdiv's Sdc → Vtr → Far: a module uses only
+//! the modules named before it in this list, which `tests/layering.rs`
+//! reads and checks against every path in the sources.
+//! 1. Foundations, using nothing of the crate: [`error`], [`examples`]
+//!    (built-in nets as plain arrays), [`rules`] (every subdivision, limit
+//!    and tangent mask) and [`geometry`] (plain triangle measures and edge
+//!    swaps).
+//! 2. Files: [`io`] (formats, parse only) → [`repair`] (explicit fixes of
+//!    what was parsed, and the options to read a net with them).
+//! 3. The net: [`topology`] (connectivity only) → [`parameters`] (surface
+//!    points as (triangle, v, w): corners, control vertices, moving between
 //!    triangles) → [`features`] (hard edges and vertex kinds) → [`net`]
-//!    (positions, validation, the limit operator);
-//! 4. [`model`] (corners, curves and faces of the hard features),
-//!    [`refine`] (uniform subdivision) and [`interpolate`] (solving for
-//!    control points whose limit passes through given points);
-//! 5. [`surface`] (exact evaluation at any (triangle, v, w), built on the
-//!    crate-private `eval`), with [`stream`] to ship a surface as bytes;
-//! 6. [`curve`] (the model's exact curves) and [`snap`] (closest points;
-//!    its index is cached by the surface through a trait, so the surface
-//!    does not know it), then [`mesh`] (the chart mesher), [`remesh`] (the quality remesher
-//!    that starts from it), [`adapt`] and [`fairness`], which use
-//!    everything below.
+//!    (positions, validation, the limit operator; reading a file parses,
+//!    repairs and validates here).
+//! 4. On the net: [`refine`] (uniform subdivision), [`interpolate`]
+//!    (control points whose limit passes through given points) and
+//!    [`model`] (corners, curves and faces of the hard features).
+//! 5. The surface: the crate-private `eval` (patches and special-vertex
+//!    eigenstructure) → [`surface`] (exact evaluation at any triangle and
+//!    parameters).
+//! 6. On the surface: [`stream`] (a surface as bytes), [`folds`] (where the
+//!    geometry folds back on itself), [`snap`] (certified closest points)
+//!    → [`curve`] (the model's curves in space, their length and
+//!    projection).
+//! 7. Meshes: [`mesh`] (the chart mesher) → [`remesh`] (the quality
+//!    remesher that starts from it), [`adapt`] (adaptive Loop subdivision,
+//!    after Liu and Kondo) and [`fairness`] (how far the interpolating
+//!    surface departs from the approximating one).
 //!
-//! Built-in shapes live in [`examples`]; errors in [`error`].
+//! What a module above the surface derives from it once (the snap index,
+//! the curves' lengths) the surface keeps for it through a trait, without
+//! knowing what it is: the surface's file names nothing above it.
 
 pub mod adapt;
 pub mod curve;
