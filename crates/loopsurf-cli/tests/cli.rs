@@ -994,10 +994,10 @@ fn mesh_vtu_carries_faces_and_edges() {
     );
 }
 
-/// A curved P2 .msh of the Viking with its summary; `curve` puts a chart
-/// mesh written as .off back on the surface (nothing moves) and curves it
-/// to P3 in .vtu; a mesh of another model is refused by its first vertex,
-/// with one line.
+/// The command of docs/high-order.md: a curved P2 .msh of the Viking with its summary;
+/// `curve` puts a chart mesh written as .off back on the surface (nothing
+/// moves) and curves it to P3 in .vtu; a mesh of another model is refused
+/// by its first vertex, with one line.
 #[test]
 fn curved_meshes_and_curving_another_mesh() {
     let msh = curved_viking_msh();

@@ -2,7 +2,7 @@
 //! plainly, or loads with the option its refusal names, or is refused in
 //! one line that says why. Loaded nets are evaluated; nothing may panic or
 //! hang. `cargo test --release --test cgal_sweep -- --nocapture` prints the
-//! table the README quotes.
+//! table docs/repairs.md quotes.
 
 mod common;
 
@@ -79,7 +79,7 @@ fn every_cgal_demo_mesh_loads_with_its_option_or_is_refused_in_one_line() {
         let examples: Vec<&str> = files.iter().take(4).map(String::as_str).collect();
         println!("| {key} | {} | {} |", files.len(), examples.join(", "));
     }
-    // What the README table claims: only the point cloud is refused.
+    // What the table in docs/repairs.md claims: only the point cloud is refused.
     let refused: Vec<&String> = outcome
         .iter()
         .filter(|(k, _)| k.starts_with("refused"))

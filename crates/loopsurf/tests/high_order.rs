@@ -1,4 +1,4 @@
-//! Curved (Lagrange P1–P4) meshes on the exact surface: nodes on
+//! Curved (Lagrange P1–P4) meshes on the exact surface (docs/high-order.md): nodes on
 //! the surface, shared edge nodes, gmsh's node order, convergence orders,
 //! crease nodes on their curves, validity, curving a mesh made elsewhere,
 //! and the files read back. References share no code with the placement:

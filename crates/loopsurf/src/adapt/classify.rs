@@ -1,14 +1,14 @@
 //! Liu & Kondo's NLFC step (next level flags calculation): which vertices are
 //! *flat*, and which become *dead*.
 //!
-//! Liu & Kondo: the conical angle (CA) of a vertex is the largest
+//! Liu & Kondo, §4.2–4.4: the conical angle (CA) of a vertex is the largest
 //! angle between the normals of the triangles meeting at it; the vertex is
 //! flat when its CA is below the threshold, and dead when all its
 //! neighbours are flat. Dead is final: a dead vertex is never classified
 //! again, and the vertices later created next to it inherit its deadness
 //! (see [`super::split`]).
 //!
-//! Hard features extend Liu & Kondo, who have none: the normals are compared
+//! Hard features extend their method, which has none: the normals are compared
 //! only within one smooth sector (triangles joined around the vertex by
 //! soft edges), since the angle across a hard edge is the feature itself,
 //! not a lack of resolution; at a crease vertex the turning of the crease
@@ -234,8 +234,8 @@ fn root(s: &mut [usize], i: usize) -> usize {
 /// How far every vertex's neighbourhood is from the limit surface, model
 /// units: the larger of the vertex's distance to the surface at its own
 /// parameters and, for each edge at it, the distance of the edge's
-/// midpoint to the surface at the midpoint's parameters (a cheap proxy
-/// for the distance of the refined mesh to the surface).
+/// midpoint to the surface at the midpoint's parameters (a cheap
+/// proxy for the distance of the refined mesh to the surface).
 pub(crate) fn surface_errors(
     net: &ControlNet,
     charts: &[FaceChart],
@@ -318,18 +318,18 @@ mod tests {
             .collect()
     }
 
-    /// The bending is on Liu & Kondo's scale: on smooth nets (no hard edge,
-    /// so every fan is one sector and their angle is meaningful) the
+    /// The bending is on Liu & Kondo's scale: on smooth nets (no hard edge, so
+    /// every fan is one sector and their angle is meaningful) the
     /// widest bending in each vertex's fan is 0.7–0.95 of its conical
     /// angle, at every vertex. A measure off by a factor would make one
     /// threshold mean two things.
     #[test]
-    fn bending_matches_the_conical_angle_on_smooth_nets() {
+    fn bending_matches_the_plain_angle_on_smooth_nets() {
         for (name, lo, hi) in [("sphere", 0.72, 0.86), ("torus", 0.84, 0.93)] {
             let net = example(name);
             let (surface, charts) = (Surface::new(&net).unwrap(), charts(&net));
             let skip = vec![false; net.points().len()];
-            let angles = conical_angles(&net, &charts, &skip, None).unwrap();
+            let plain = conical_angles(&net, &charts, &skip, None).unwrap();
             let normals: Vec<DVec3> = net
                 .triangles()
                 .iter()
@@ -337,7 +337,7 @@ mod tests {
                 .collect();
             let all = vec![true; net.triangles().len()];
             let bend = bending(&net, &charts, &surface, &normals, &all).unwrap();
-            for (v, &ca) in angles.iter().enumerate() {
+            for (v, &ca) in plain.iter().enumerate() {
                 assert!(ca > 5.0, "{name}: vertex {v} is curved ({ca}°)");
                 let widest = net
                     .topology()
@@ -348,7 +348,7 @@ mod tests {
                 let ratio = widest / ca;
                 assert!(
                     (lo..=hi).contains(&ratio),
-                    "{name}: vertex {v}: bending {widest}° against the conical angle {ca}°"
+                    "{name}: vertex {v}: bending {widest}° against the plain angle {ca}°"
                 );
             }
         }
@@ -357,15 +357,15 @@ mod tests {
     /// Without hard edges the limit surface changes nothing: Liu & Kondo's
     /// conical angle, bit for bit.
     #[test]
-    fn nets_without_hard_edges_keep_the_conical_angle() {
+    fn nets_without_hard_edges_keep_the_plain_angle() {
         for name in ["sphere", "torus", "viking"] {
             let net = example(name);
             assert_eq!(net.features().num_hard_edges(), 0, "{name}");
             let (surface, charts) = (Surface::new(&net).unwrap(), charts(&net));
             let skip: Vec<bool> = (0..net.points().len()).map(|v| v % 7 == 0).collect();
-            let angles = conical_angles(&net, &charts, &skip, None).unwrap();
+            let plain = conical_angles(&net, &charts, &skip, None).unwrap();
             let with = conical_angles(&net, &charts, &skip, Some(&surface)).unwrap();
-            assert_eq!(angles, with, "{name}");
+            assert_eq!(plain, with, "{name}");
         }
     }
 
@@ -374,7 +374,7 @@ mod tests {
     /// bending does. The sphere with every edge at vertex 0 tagged: the
     /// vertex becomes a corner whose five sectors are one triangle each, the
     /// surface there is as curved as before, and it must count about as
-    /// much as the conical angle of the untagged vertex (18.6°).
+    /// much as Liu & Kondo's angle of the untagged vertex (18.6°).
     #[test]
     fn one_triangle_sectors_count_their_limit_bending() {
         let plain = example("sphere");
@@ -387,9 +387,9 @@ mod tests {
         let (surface, charts) = (Surface::new(&net).unwrap(), charts(&net));
         let skip = vec![false; net.points().len()];
         let untagged = conical_angles(&plain, &charts, &skip, None).unwrap();
-        let angles = conical_angles(&net, &charts, &skip, None).unwrap();
+        let plain = conical_angles(&net, &charts, &skip, None).unwrap();
         let with = conical_angles(&net, &charts, &skip, Some(&surface)).unwrap();
-        assert_eq!(angles[v], 0.0, "every sector at the corner is one triangle");
+        assert_eq!(plain[v], 0.0, "every sector at the corner is one triangle");
         let ratio = with[v] / untagged[v];
         assert!(
             (0.72..=0.9).contains(&ratio),
@@ -397,8 +397,8 @@ mod tests {
             with[v],
             untagged[v]
         );
-        for (u, (&s, &w)) in angles.iter().zip(&with).enumerate() {
-            assert!(w >= s, "vertex {u}: {w}° below the conical angle {s}°");
+        for (u, (&s, &w)) in plain.iter().zip(&with).enumerate() {
+            assert!(w >= s, "vertex {u}: {w}° below the plain angle {s}°");
         }
     }
 }

@@ -276,8 +276,8 @@ impl<'a> Adapter<'a> {
             None => vec![true; level.dead.len()],
         };
         // Under a tolerance a vertex must itself be within it to die
-        // (flatness asks it only of its neighbours), or the frozen dead
-        // vertices could stay farther than promised.
+        // (Liu & Kondo ask only its neighbours to be flat), or the
+        // frozen dead vertices could stay farther than promised.
         let mut within = vec![true; flat.len()];
         if let Some((surface, tol)) = tolerance {
             let errors = classify::surface_errors(&level.net, &level.charts, surface)?;

@@ -1,4 +1,4 @@
-//! Local mesh realignment (Liu & Kondo's LMR), done as max–min angle
+//! Local mesh realignment (Liu & Kondo §4.5, LMR), done as max–min angle
 //! edge swaps.
 //!
 //! Liu & Kondo's LMR flips the new dead edges between live triangles (its

@@ -1,11 +1,10 @@
-//! One level of adaptive Loop subdivision (Liu & Kondo, steps 2–3 of a
-//! level).
+//! One level of adaptive Loop subdivision (Liu & Kondo §4.6, steps 2–3).
 //!
 //! An edge is dead when both its ends are dead and gets no new vertex; every
 //! other edge gets one, placed by the Loop edge mask, and the new vertex is
 //! dead when either end is. Old vertices move by the Loop vertex masks
-//! unless dead (a dead vertex keeps its place: Liu & Kondo keep the
-//! density and shape of dead regions). The masks are [`crate::rules`]'s, applied
+//! unless dead (a dead vertex keeps its place: Liu & Kondo keep the density
+//! and shape of dead regions). The masks are [`crate::rules`]'s, applied
 //! through [`crate::refine::subdivide_points`], hard edges and corners
 //! included.
 //!

@@ -1,4 +1,4 @@
-//! The surface mesher: a triangulation of the limit surface
+//! The surface mesher (Persson, Aftosmis & Haines §4): a triangulation of the limit surface
 //! whose every vertex lies exactly on it, uniform or curvature-adaptive,
 //! within a chord tolerance, with the control net's hard edges and corners
 //! kept as output edges and vertices.
@@ -20,7 +20,7 @@
 //! by one projection step where it matters). Where it exceeds the
 //! tolerance, the control triangle or edge is cut finer and rebuilt.
 //!
-//! The output carries the model's labels (DESIGN.md, "The model"): the
+//! The output carries the model's labels (docs/design.md, "The model"): the
 //! face of every triangle and the curve of every hard output edge; see
 //! [`labels`] for the same labels of any mesh whose vertices carry their
 //! surface points.
@@ -80,7 +80,7 @@ const MAX_ROUNDS: usize = 16;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Density {
     /// Every control edge cut into N segments: N² triangles per control
-    /// triangle (the paper's uniform mode).
+    /// triangle (Persson, Aftosmis & Haines's uniform mode).
     Uniform(u32),
     /// A target edge length, in model units.
     Size(f64),
@@ -177,7 +177,7 @@ impl<'a> Mesher<'a> {
         self
     }
 
-    /// Let the density follow curvature (curvature × area),
+    /// Let the density follow curvature (Persson, Aftosmis & Haines §4: curvature × area),
     /// bounded by the tolerance ([`DEFAULT_ADAPT_TOLERANCE`] if none).
     pub fn adapt_curvature(mut self, adapt: bool) -> Self {
         self.adapt = adapt;

@@ -82,7 +82,7 @@ pub const DEFAULT_MAX_TRIANGLES: usize = 20_000_000;
 /// shorter than their target (relaxation pulls each vertex to the centroid
 /// of its triangles, and a collapse that would leave an edge too long is
 /// refused): aimed at H, their median was 0.91–0.92 H and only 86–90% lay
-/// within [0.8 H, 4/3 H] (Viking 1%, fandisk and pig 0.5%).
+/// within the target window [0.8 H, 4/3 H] (Viking 1%, fandisk and pig 0.5%).
 /// Aimed at 1.07 H, the median is 0.98–0.99 H and 96–97% lie within it,
 /// with the angles as good (mean-min 52.1°, 51.5°, 51.6°).
 const UNIFORM_AIM: f64 = 1.07;
@@ -104,7 +104,7 @@ const POLISH: usize = 2;
 /// centroid of its triangles, which evens the sizes but need not open its
 /// worst angle. Guarded, two rounds lift the mean smallest angle by 0.1°
 /// and the smallest by up to 4° (fandisk adapted: 49.93° → 50.03°, the
-/// 50° aimed at met; Viking adapted: min 23.8° → 27.9°); each further
+/// 50° goal met; Viking adapted: min 23.8° → 27.9°); each further
 /// round adds about 0.02°, and max–min flips after each 0.01° (they find
 /// a handful of edges). Guarding the polish rounds instead gives 49.85°.
 const GUARDED: usize = 2;

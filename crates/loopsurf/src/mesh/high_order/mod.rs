@@ -1,6 +1,6 @@
 //! Curved (Lagrange P2–P4) surface meshes whose every node lies exactly on
 //! the limit surface, for DG and high-order FE codes that need curved
-//! boundary elements.
+//! boundary elements (Persson, Aftosmis & Haines §1).
 //!
 //! An element's map is the Lagrange interpolant of exact surface points at
 //! its nodes ([`lagrange`] has the node layout, gmsh's). The nodes are
