@@ -3,6 +3,7 @@
 use crate::buffers::{levels_arg, Blocks, MeshArrays, MeshOutputs};
 use crate::ls_surface;
 use crate::status::{input, run, Fail, LS_ERR_INVALID_ARGUMENT};
+use loopsurf::Adapter;
 use std::ffi::c_int;
 
 /// Adaptive Loop subdivision of the surface's control net, `levels` times
@@ -43,7 +44,7 @@ pub unsafe extern "C" fn ls_adapt(
                 format!("angle = {angle}, tolerance = {tolerance}: NaN"),
             ));
         }
-        let mut adapter = surface.net().adapt().levels(levels_arg(levels)?);
+        let mut adapter = Adapter::new(surface.net()).levels(levels_arg(levels)?);
         if surface.mode() == loopsurf::SurfaceMode::Approximating {
             // The net's own limit surface: the conical angle at hard edges
             // measures against it instead of building one.

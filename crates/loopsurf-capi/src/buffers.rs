@@ -6,6 +6,7 @@
 use crate::ls_surface;
 use crate::status::{input, output, run, Fail};
 use crate::status::{LS_ERR_INTERNAL, LS_ERR_INVALID_ARGUMENT};
+use loopsurf::refine::refine_uniform;
 use std::ffi::{c_int, c_void};
 
 /// Copies `data` into a fresh `malloc` block (never NULL on success).
@@ -177,7 +178,7 @@ pub unsafe extern "C" fn ls_refine(
             output(tris, "tris")?,
         );
         let levels = levels_arg(levels)?;
-        let refined = surface.net().refine_uniform(levels)?;
+        let refined = refine_uniform(surface.net(), levels)?;
         let net = refined.net();
         if net.points().len() > i32::MAX as usize {
             return Err(Fail::new(
@@ -229,7 +230,7 @@ pub unsafe extern "C" fn ls_refine_origins(
             output(vw, "vw")?,
         );
         let levels = levels_arg(levels)?;
-        let refined = surface.net().refine_uniform(levels)?;
+        let refined = refine_uniform(surface.net(), levels)?;
         let mut tris = Vec::with_capacity(refined.net().points().len());
         let mut params = Vec::with_capacity(2 * tris.capacity());
         for origin in refined.origins() {

@@ -3,6 +3,7 @@
 
 use crate::input::Input;
 use loopsurf::io::{self, DataArray};
+use loopsurf::Adapter;
 use loopsurf::{AdaptiveMesh, ControlNet, Error, Surface};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -68,8 +69,7 @@ fn run_once(
 ) -> Result<Run, Error> {
     // The surface is this net's limit surface: the conical angle at hard
     // edges measures against it instead of building its own.
-    let mut adapter = net
-        .adapt()
+    let mut adapter = Adapter::new(net)
         .levels(args.levels)
         .realign(!args.no_realign)
         .limit_surface(surface);

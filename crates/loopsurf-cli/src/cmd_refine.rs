@@ -2,6 +2,7 @@
 
 use crate::input::Input;
 use loopsurf::io::{self, DataArray};
+use loopsurf::refine::refine_uniform;
 use loopsurf::Error;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -25,7 +26,7 @@ pub fn run(args: Args) -> Result<(), Error> {
     io::check_writable(&args.output)?;
     let net = args.input.load()?;
     let start = Instant::now();
-    let refined = net.refine_uniform(args.levels)?;
+    let refined = refine_uniform(&net, args.levels)?;
     let refined_net = refined.net();
     let seconds = start.elapsed().as_secs_f64();
     let points = if args.limit {

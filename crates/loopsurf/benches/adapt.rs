@@ -4,6 +4,8 @@
 //! thread.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use loopsurf::refine::refine_uniform;
+use loopsurf::Adapter;
 use loopsurf::ControlNet;
 use std::path::PathBuf;
 
@@ -34,17 +36,21 @@ fn adapt(c: &mut Criterion) {
         let uniform = net.triangles().len() as u64 * 4u64.pow(LEVELS);
         group.throughput(Throughput::Elements(uniform));
         group.bench_function(format!("{stem}_uniform_refine"), |b| {
-            b.iter(|| single.install(|| net.refine_uniform(LEVELS).unwrap()))
+            b.iter(|| single.install(|| refine_uniform(&net, LEVELS).unwrap()))
         });
         group.bench_function(format!("{stem}_adapt_ca0"), |b| {
-            b.iter(|| single.install(|| net.adapt().angle(0.0).levels(LEVELS).run().unwrap()))
+            b.iter(|| {
+                single.install(|| Adapter::new(&net).angle(0.0).levels(LEVELS).run().unwrap())
+            })
         });
-        let adapted = net.adapt().angle(11.0).levels(LEVELS).run().unwrap();
+        let adapted = Adapter::new(&net).angle(11.0).levels(LEVELS).run().unwrap();
         let produced = adapted.net.triangles().len() as u64;
         eprintln!("{stem}: CA 11° gives {produced} triangles, uniform {uniform}");
         group.throughput(Throughput::Elements(produced));
         group.bench_function(format!("{stem}_adapt_ca11"), |b| {
-            b.iter(|| single.install(|| net.adapt().angle(11.0).levels(LEVELS).run().unwrap()))
+            b.iter(|| {
+                single.install(|| Adapter::new(&net).angle(11.0).levels(LEVELS).run().unwrap())
+            })
         });
     }
     group.finish();

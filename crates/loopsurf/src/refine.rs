@@ -253,10 +253,3 @@ pub(crate) fn subdivide_points(
         });
     new_points
 }
-
-impl ControlNet {
-    /// Uniform refinement; see [`refine_uniform`].
-    pub fn refine_uniform(&self, levels: u32) -> Result<Refinement> {
-        refine_uniform(self, levels)
-    }
-}

@@ -6,6 +6,8 @@
 mod common;
 
 use common::{cgal_mesh, example};
+use loopsurf::refine::refine_uniform;
+use loopsurf::Adapter;
 use loopsurf::{AdaptiveMesh, ControlNet, Surface, SurfacePoint};
 use std::collections::{HashMap, HashSet};
 
@@ -80,8 +82,8 @@ fn angle_zero_is_uniform_loop_exactly() {
     }));
     for (what, net) in &cases {
         let levels = 3;
-        let adaptive = net.adapt().angle(0.0).levels(levels).run().unwrap();
-        let uniform = net.refine_uniform(levels).unwrap();
+        let adaptive = Adapter::new(net).angle(0.0).levels(levels).run().unwrap();
+        let uniform = refine_uniform(net, levels).unwrap();
         assert_eq!(
             adaptive.net.triangles().len(),
             uniform.net().triangles().len(),
@@ -128,8 +130,7 @@ fn adaptive_meshes_are_watertight_at_every_angle_and_level() {
         for angle in [3.0, 11.0, 22.0] {
             for (levels, realign) in [(1, true), (3, true), (3, false), (4, true)] {
                 let what = format!("{name} CA {angle} levels {levels} realign {realign}");
-                let out = net
-                    .adapt()
+                let out = Adapter::new(net)
                     .angle(angle)
                     .levels(levels)
                     .realign(realign)
@@ -153,15 +154,13 @@ fn adaptive_meshes_are_watertight_at_every_angle_and_level() {
 #[test]
 fn dead_triangles_are_kept_and_flat_regions_stop() {
     let Some(net) = cgal("cow.off") else { return };
-    let coarse = net
-        .adapt()
+    let coarse = Adapter::new(&net)
         .angle(11.0)
         .levels(2)
         .realign(false)
         .run()
         .unwrap();
-    let fine = net
-        .adapt()
+    let fine = Adapter::new(&net)
         .angle(11.0)
         .levels(3)
         .realign(false)
@@ -192,7 +191,7 @@ fn dead_triangles_are_kept_and_flat_regions_stop() {
     // Fewer triangles than uniform, more so at a larger angle and a deeper level.
     let uniform = |k: u32| net.triangles().len() * 4usize.pow(k);
     let ratio = |angle: f64, k: u32| {
-        let out = net.adapt().angle(angle).levels(k).run().unwrap();
+        let out = Adapter::new(&net).angle(angle).levels(k).run().unwrap();
         1.0 - out.net.triangles().len() as f64 / uniform(k) as f64
     };
     let (r7, r11_3, r11_4, r22) = (
@@ -208,7 +207,7 @@ fn dead_triangles_are_kept_and_flat_regions_stop() {
 #[test]
 fn hard_edges_stay_hard_chains() {
     let net = example("viking", Some(30.0));
-    let out = net.adapt().angle(11.0).levels(4).run().unwrap();
+    let out = Adapter::new(&net).angle(11.0).levels(4).run().unwrap();
     let topo = out.net.topology();
     let hard: Vec<[u32; 2]> = out.net.hard_edges();
     let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
@@ -252,8 +251,7 @@ fn tolerance_bounds_the_distance_to_the_limit_surface() {
     for (what, net) in &cases {
         let surface = Surface::new(net).unwrap();
         let tol = 1e-3;
-        let out = net
-            .adapt()
+        let out = Adapter::new(net)
             .tolerance(&surface, tol)
             .levels(6)
             .run()
@@ -299,12 +297,14 @@ fn bad_values_are_clear_errors() {
     let other = Surface::new(&example("torus", None)).unwrap();
     let surface = Surface::new(&net).unwrap();
     let err = |a: loopsurf::Adapter| a.run().unwrap_err().to_string();
-    assert!(err(net.adapt().angle(-1.0).levels(2)).contains("angle -1"));
-    assert!(err(net.adapt().angle(f64::NAN).levels(2)).contains("angle NaN"));
-    assert!(err(net.adapt().angle(180.0).levels(2)).contains("below 180"));
-    assert!(err(net.adapt().angle(5.0).levels(11)).contains("levels 11: at most 10"));
-    assert!(err(net.adapt().levels(2)).contains("no criterion"));
-    assert!(err(net.adapt().tolerance(&surface, 0.0).levels(2)).contains("tolerance 0"));
-    assert!(err(net.adapt().tolerance(&other, 1e-3).levels(2)).contains("not this net's"));
-    assert!(err(net.adapt().angle(0.0).levels(3).max_triangles(1000)).contains("over the limit"));
+    assert!(err(Adapter::new(&net).angle(-1.0).levels(2)).contains("angle -1"));
+    assert!(err(Adapter::new(&net).angle(f64::NAN).levels(2)).contains("angle NaN"));
+    assert!(err(Adapter::new(&net).angle(180.0).levels(2)).contains("below 180"));
+    assert!(err(Adapter::new(&net).angle(5.0).levels(11)).contains("levels 11: at most 10"));
+    assert!(err(Adapter::new(&net).levels(2)).contains("no criterion"));
+    assert!(err(Adapter::new(&net).tolerance(&surface, 0.0).levels(2)).contains("tolerance 0"));
+    assert!(err(Adapter::new(&net).tolerance(&other, 1e-3).levels(2)).contains("not this net's"));
+    assert!(
+        err(Adapter::new(&net).angle(0.0).levels(3).max_triangles(1000)).contains("over the limit")
+    );
 }

@@ -14,6 +14,7 @@ mod common;
 
 use common::{cgal_mesh, example};
 use loopsurf::snap;
+use loopsurf::Adapter;
 use loopsurf::{AdaptiveMesh, ControlNet, Surface};
 use std::collections::HashMap;
 
@@ -101,7 +102,11 @@ fn densely_tagged_nets_refine_where_the_limit_bends() {
         let mut counts = vec![n0];
         let mut last = None;
         for levels in 1..=3 {
-            let out = net.adapt().angle(angle).levels(levels).run().unwrap();
+            let out = Adapter::new(&net)
+                .angle(angle)
+                .levels(levels)
+                .run()
+                .unwrap();
             check_conforming(&net, &out, &what);
             counts.push(out.net.triangles().len());
             last = Some(out);
@@ -140,7 +145,7 @@ fn joint_splits_its_bent_one_triangle_sector() {
     let before = deviation(&net, &surface);
     let mut counts = vec![net.triangles().len()];
     for levels in 1..=3 {
-        let out = net.adapt().angle(11.0).levels(levels).run().unwrap();
+        let out = Adapter::new(&net).angle(11.0).levels(levels).run().unwrap();
         let what = format!("joint levels {levels}");
         check_conforming(&net, &out, &what);
         let kept = out
@@ -167,9 +172,8 @@ fn joint_splits_its_bent_one_triangle_sector() {
 fn the_limit_surface_given_or_built_gives_one_mesh() {
     let net = example("viking", Some(30.0));
     let surface = Surface::new(&net).unwrap();
-    let built = net.adapt().angle(7.0).levels(4).run().unwrap();
-    let given = net
-        .adapt()
+    let built = Adapter::new(&net).angle(7.0).levels(4).run().unwrap();
+    let given = Adapter::new(&net)
         .angle(7.0)
         .levels(4)
         .limit_surface(&surface)
@@ -179,8 +183,7 @@ fn the_limit_surface_given_or_built_gives_one_mesh() {
     assert_eq!(built.net.points(), given.net.points());
     // With a tolerance loose enough to stop nothing the angle does not,
     // its surface serves the angle too.
-    let both = net
-        .adapt()
+    let both = Adapter::new(&net)
         .angle(7.0)
         .tolerance(&surface, 0.5)
         .levels(4)
@@ -203,9 +206,8 @@ fn nets_without_hard_edges_are_untouched() {
         assert_eq!(net.features().num_hard_edges(), 0, "{what}");
         let surface = Surface::new(net).unwrap();
         for angle in [3.0, 11.0] {
-            let seed = net.adapt().angle(angle).levels(3).run().unwrap();
-            let with = net
-                .adapt()
+            let seed = Adapter::new(net).angle(angle).levels(3).run().unwrap();
+            let with = Adapter::new(net)
                 .angle(angle)
                 .levels(3)
                 .limit_surface(&surface)
@@ -226,8 +228,7 @@ fn a_foreign_limit_surface_is_refused() {
     let untagged = Surface::new(&example("viking", None)).unwrap();
     let other = Surface::new(&example("torus", None)).unwrap();
     for surface in [&untagged, &other] {
-        let err = net
-            .adapt()
+        let err = Adapter::new(&net)
             .angle(11.0)
             .levels(2)
             .limit_surface(surface)
@@ -249,8 +250,7 @@ fn distance_check_on_oblong_is_finite() {
     let mut net = ControlNet::read(path).unwrap();
     net.tag_by_angle(30.0).unwrap();
     let surface = Surface::new(&net).unwrap();
-    let mesh = net
-        .adapt()
+    let mesh = Adapter::new(&net)
         .levels(1)
         .angle(11.0)
         .limit_surface(&surface)

@@ -10,6 +10,7 @@
 mod common;
 
 use common::{bicone, example};
+use loopsurf::refine::refine_uniform;
 use loopsurf::{ControlNet, DVec3, Surface, VertexKind};
 use std::collections::HashMap;
 
@@ -18,7 +19,7 @@ const SCALE: f64 = (1u32 << LEVELS) as f64;
 
 /// Exact limit points by control triangle and dyadic (i, j) = 2⁷ (v, w).
 fn dyadic_limits(net: &ControlNet) -> HashMap<(u32, u32, u32), DVec3> {
-    let refined = net.refine_uniform(LEVELS).unwrap();
+    let refined = refine_uniform(net, LEVELS).unwrap();
     refined
         .limit_points()
         .into_iter()

@@ -6,6 +6,7 @@
 mod common;
 
 use common::{cgal_mesh, example};
+use loopsurf::refine::refine_uniform;
 use loopsurf::repair::ReadOptions;
 use loopsurf::{ControlNet, Surface};
 use std::collections::{BTreeSet, HashMap};
@@ -15,7 +16,7 @@ use std::collections::{BTreeSet, HashMap};
 /// control triangle, as `folded_patches` keeps 1/32 from the sides) turn
 /// by more than 120° from one another.
 fn facets_that_turn_back(net: &ControlNet, levels: u32) -> BTreeSet<usize> {
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(net, levels).unwrap();
     let points = refined.limit_points();
     let full = (1u32 << levels) as f64;
     let inside = |v: u32| {

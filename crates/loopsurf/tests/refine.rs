@@ -7,6 +7,7 @@
 mod common;
 
 use common::{bicone, cgal_mesh};
+use loopsurf::refine::refine_uniform;
 use loopsurf::{examples, ControlNet, DVec3, VertexKind};
 
 /// Limit positions of the vertices of `net` must not change when the net is
@@ -14,7 +15,7 @@ use loopsurf::{examples, ControlNet, DVec3, VertexKind};
 fn assert_limit_invariant(net: &ControlNet, levels: u32, tol: f64) {
     let diag = net.bbox_diagonal();
     let coarse = net.limit_points();
-    let fine = net.refine_uniform(levels).unwrap().limit_points();
+    let fine = refine_uniform(net, levels).unwrap().limit_points();
     let worst = coarse
         .iter()
         .zip(&fine)
@@ -50,7 +51,7 @@ fn limits_are_invariant_on_every_vertex_kind() {
     assert_eq!(net.topology().valence(2 * n + 1), n);
     assert_limit_invariant(&net, 1, 1e-13);
     // Level-1 vertices (edge points) after two more levels.
-    let level1 = net.refine_uniform(1).unwrap().into_net();
+    let level1 = refine_uniform(&net, 1).unwrap().into_net();
     assert_limit_invariant(&level1, 2, 1e-13);
 }
 
@@ -106,7 +107,7 @@ fn periodic_bspline(p: &[DVec3], t: f64) -> DVec3 {
 /// from the same first vertex) has the limit positions of the cubic B-spline.
 fn assert_crease_is_bspline(net: &ControlNet, coarse_loop: &[u32], levels: u32, fine_loop: &[u32]) {
     let diag = net.bbox_diagonal();
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(net, levels).unwrap();
     let limits = refined.limit_points();
     let polygon: Vec<DVec3> = coarse_loop
         .iter()
@@ -130,7 +131,7 @@ fn boundary_is_the_cubic_bspline_of_its_polygon() {
     let net = bicone(12, true);
     let coarse = net.topology().boundary_loops().remove(0);
     let levels = 3;
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(&net, levels).unwrap();
     let mut fine = refined.net().topology().boundary_loops().remove(0);
     let start = fine.iter().position(|&v| v == coarse[0]).unwrap();
     fine.rotate_left(start);
@@ -147,7 +148,7 @@ fn tagged_crease_loop_is_the_cubic_bspline_of_its_polygon() {
         net.tag_edge(ring[i], ring[(i + 1) % n as usize]).unwrap();
     }
     let levels = 3;
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(&net, levels).unwrap();
     // Walk the refined crease: from each vertex, the hard neighbour not yet visited.
     let fine_net = refined.net();
     let mut fine = vec![ring[0]];
@@ -189,7 +190,7 @@ fn tagged_crease_loop_is_the_cubic_bspline_of_its_polygon() {
 fn refinement_keeps_indices_and_features() {
     let mut net = bicone(8, true);
     net.tag_vertex(0).unwrap();
-    let r = net.refine_uniform(2).unwrap();
+    let r = refine_uniform(&net, 2).unwrap();
     let (nv, ne, nt) = (
         net.points().len(),
         net.topology().num_edges(),
@@ -219,15 +220,13 @@ fn refinement_keeps_indices_and_features() {
         let [a, b, c] = n.triangles()[t].map(|i| n.points()[i as usize]);
         (b - a).cross(c - a)
     };
-    let one = net.refine_uniform(1).unwrap().into_net();
+    let one = refine_uniform(&net, 1).unwrap().into_net();
     for t in 0..nt {
         for k in 0..4 {
             assert!(tri_normal(&one, 4 * t + k).dot(tri_normal(&net, t)) > 0.0);
         }
     }
-    assert!(net
-        .refine_uniform(loopsurf::refine::MAX_LEVELS + 1)
-        .is_err());
+    assert!(refine_uniform(&net, loopsurf::refine::MAX_LEVELS + 1).is_err());
 }
 
 /// Largest sine of the angle between the tangent plane of the masks at
@@ -238,7 +237,7 @@ fn chord_tilt(net: &ControlNet, v: usize, levels: u32) -> f64 {
         panic!("vertex {v} has no tangent masks");
     };
     let normal = t1.cross(t2).normalize();
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(net, levels).unwrap();
     let limits = refined.limit_points();
     refined
         .net()

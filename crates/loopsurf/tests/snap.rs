@@ -5,6 +5,7 @@
 mod common;
 
 use common::{cgal_mesh, example, Lcg};
+use loopsurf::refine::refine_uniform;
 use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, Snap, Surface, SurfaceMode};
 
@@ -14,7 +15,7 @@ struct Reference {
 
 impl Reference {
     fn new(net: &ControlNet) -> Reference {
-        let refined = net.refine_uniform(3).unwrap();
+        let refined = refine_uniform(net, 3).unwrap();
         let samples = refined
             .limit_points()
             .into_iter()

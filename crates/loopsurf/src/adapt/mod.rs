@@ -376,10 +376,3 @@ impl AdaptiveMesh {
             .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
     }
 }
-
-impl ControlNet {
-    /// Adaptive subdivision of this net; see [`Adapter`].
-    pub fn adapt(&self) -> Adapter<'_> {
-        Adapter::new(self)
-    }
-}

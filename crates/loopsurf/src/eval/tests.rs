@@ -3,6 +3,7 @@
 
 use super::{box_spline, regular};
 use crate::features::VertexKind;
+use crate::refine::refine_uniform;
 use crate::{examples, ControlNet, DVec3};
 
 /// (patches with only real points, patches with phantoms) checked; panics
@@ -12,7 +13,7 @@ fn check_regular_patches(net: &ControlNet, levels: u32) -> (usize, usize) {
     let stencils: Vec<Option<[regular::Source; 12]>> = (0..net.triangles().len())
         .map(|t| regular::stencil(net.topology(), net.features(), &kinds, t))
         .collect();
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(net, levels).unwrap();
     let limits = refined.limit_points();
     let diag = net.bbox_diagonal();
     let (mut plain, mut phantom) = (0, 0);
@@ -93,7 +94,7 @@ fn smooth_regular_patches_are_box_splines() {
     let torus = example("torus", None);
     let (plain, phantom) = check_regular_patches(&torus, 3);
     // Every triangle of the torus is regular: every refined vertex checked.
-    assert_eq!(plain, torus.refine_uniform(3).unwrap().origins().len());
+    assert_eq!(plain, refine_uniform(&torus, 3).unwrap().origins().len());
     assert_eq!(phantom, 0);
 }
 
@@ -127,7 +128,7 @@ fn cgal_regular_patches() {
 /// its exact limit position. Returns how many points were checked.
 fn check_evaluator(net: &ControlNet, levels: u32) -> usize {
     let eval = super::surface::Evaluator::new(net).unwrap();
-    let refined = net.refine_uniform(levels).unwrap();
+    let refined = refine_uniform(net, levels).unwrap();
     let limits = refined.limit_points();
     let diag = net.bbox_diagonal();
     let mut checked = 0;
@@ -211,8 +212,8 @@ fn special_matrices_reproduce_one_subdivision_step() {
         (example("tetra", None), 0),
     ];
     for (net, c) in cases {
-        let l1 = net.refine_uniform(1).unwrap().into_net();
-        let l2 = l1.refine_uniform(1).unwrap().into_net();
+        let l1 = refine_uniform(&net, 1).unwrap().into_net();
+        let l2 = refine_uniform(&l1, 1).unwrap().into_net();
         let topo = l1.topology();
         let (p, q) = {
             let t = topo.fan(c as usize)[0] as usize;
@@ -300,7 +301,7 @@ fn check_near_vertex(net: &ControlNet, (t, corner): (usize, usize), depth: u32) 
     };
     let (mut fine, mut ids) = crop(net, c, &[c, p, q]);
     for k in 1..=depth {
-        let step = fine.refine_uniform(1).unwrap().into_net();
+        let step = refine_uniform(&fine, 1).unwrap().into_net();
         let topo = fine.topology();
         let n0 = fine.points().len() as u32;
         let mid = |a: u32, b: u32| n0 + topo.find_edge(a, b).unwrap() as u32;
