@@ -29,6 +29,7 @@ module loopsurf
     integer(c_int), parameter :: LS_ERR_BAD_STREAM = -10
     integer(c_int), parameter :: LS_ERR_INVALID_ARGUMENT = -11
     integer(c_int), parameter :: LS_ERR_INTERNAL = -12
+    integer(c_int), parameter :: LS_ERR_OVER_BUDGET = -13
     integer(c_int), parameter :: LS_INTERPOLATE_SOLVE = 1
     integer(c_int), parameter :: LS_INTERPOLATE_DISPLACEMENT = 2
     !> Flags of ls_net_load_with / loopsurf_load_with (sum them).
@@ -50,6 +51,42 @@ module loopsurf
         integer(c_size_t) :: struct_size
         integer(c_int32_t) :: tri
         real(c_double) :: vw(2), xyz(3), distance, lower_bound
+    end type
+
+    ! Options structs: fill each with its ls_*_options_default, then change
+    ! what you need (the fields and their defaults are those of loopsurf.h).
+
+    !> Options of ls_mesh, the chart mesher.
+    type, bind(C) :: ls_mesh_options
+        integer(c_size_t) :: struct_size
+        integer(c_int) :: uniform
+        real(c_double) :: size, tolerance
+        integer(c_int) :: adapt_curvature
+        integer(c_size_t) :: max_triangles
+    end type
+
+    !> Options of ls_remesh, the quality remesher.
+    type, bind(C) :: ls_remesh_options
+        integer(c_size_t) :: struct_size
+        real(c_double) :: size, tolerance
+        integer(c_int) :: adapt_curvature
+        real(c_double) :: gradation
+        integer(c_size_t) :: max_triangles
+    end type
+
+    !> Options of ls_adapt, adaptive subdivision.
+    type, bind(C) :: ls_adapt_options
+        integer(c_size_t) :: struct_size
+        real(c_double) :: angle, tolerance
+        integer(c_int) :: levels, to_limit
+        integer(c_size_t) :: max_triangles
+    end type
+
+    !> Options of ls_mesh_curve, curving another tool's mesh.
+    type, bind(C) :: ls_mesh_curve_options
+        integer(c_size_t) :: struct_size
+        integer(c_int) :: order
+        real(c_double) :: max_move
     end type
 
     interface
@@ -230,50 +267,107 @@ module loopsurf
             integer(c_size_t), intent(out) :: nverts
             type(c_ptr), intent(out) :: tri, vw
         end function
-        integer(c_int) function ls_mesh(surface, uniform, size, tolerance, adapt_curvature, &
-                nverts, xyz, ntris, tris, vertex_tri, vertex_vw, tri_chart, tri_vw) &
-                bind(C, name="ls_mesh")
-            import :: c_int, c_double, c_size_t, c_ptr
-            type(c_ptr), value :: surface
-            integer(c_int), value :: uniform, adapt_curvature
-            real(c_double), value :: size, tolerance
-            integer(c_size_t), intent(out) :: nverts, ntris
-            type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
-            ! Optional outputs: c_null_ptr skips one; c_loc of a type(c_ptr)
-            ! variable receives the array.
-            type(c_ptr), value :: tri_chart, tri_vw
+        integer(c_int) function ls_mesh_options_default(options) bind(C, name="ls_mesh_options_default")
+            import :: c_int, ls_mesh_options
+            type(ls_mesh_options), intent(out) :: options
         end function
-        ! The quality remesher. Optional outputs: absent skips one (NULL).
-        integer(c_int) function ls_remesh(surface, size, tolerance, adapt_curvature, gradation, &
-                nverts, xyz, ntris, tris, vertex_tri, vertex_vw, tri_face, deviation) &
-                bind(C, name="ls_remesh")
-            import :: c_int, c_double, c_size_t, c_ptr
+        integer(c_int) function ls_mesh(surface, options, mesh) bind(C, name="ls_mesh")
+            import :: c_int, c_ptr, ls_mesh_options
             type(c_ptr), value :: surface
-            real(c_double), value :: size, tolerance, gradation
-            integer(c_int), value :: adapt_curvature
-            integer(c_size_t), intent(out) :: nverts, ntris
-            type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
-            type(c_ptr), intent(out), optional :: tri_face
-            real(c_double), intent(out), optional :: deviation
+            type(ls_mesh_options), intent(in) :: options
+            type(c_ptr), intent(out) :: mesh
+        end function
+        integer(c_int) function ls_remesh_options_default(options) bind(C, name="ls_remesh_options_default")
+            import :: c_int, ls_remesh_options
+            type(ls_remesh_options), intent(out) :: options
+        end function
+        integer(c_int) function ls_remesh(surface, options, mesh) bind(C, name="ls_remesh")
+            import :: c_int, c_ptr, ls_remesh_options
+            type(c_ptr), value :: surface
+            type(ls_remesh_options), intent(in) :: options
+            type(c_ptr), intent(out) :: mesh
+        end function
+        integer(c_int) function ls_adapt_options_default(options) bind(C, name="ls_adapt_options_default")
+            import :: c_int, ls_adapt_options
+            type(ls_adapt_options), intent(out) :: options
+        end function
+        integer(c_int) function ls_adapt(surface, options, mesh) bind(C, name="ls_adapt")
+            import :: c_int, c_ptr, ls_adapt_options
+            type(c_ptr), value :: surface
+            type(ls_adapt_options), intent(in) :: options
+            type(c_ptr), intent(out) :: mesh
+        end function
+        integer(c_int) function ls_mesh_curve_options_default(options) bind(C, name="ls_mesh_curve_options_default")
+            import :: c_int, ls_mesh_curve_options
+            type(ls_mesh_curve_options), intent(out) :: options
         end function
         ! Curves another tool's linear mesh (0-based tris): nodes on the
-        ! surface, elements in gmsh's node order. Optional outputs: absent
-        ! skips one (NULL).
-        integer(c_int) function ls_curve(surface, nverts, xyz, ntris, tris, order, max_move, &
-                nnodes, nodes_xyz, node_tri, node_vw, elements, tri_face, largest_move, &
-                min_scaled_jacobian) bind(C, name="ls_curve")
-            import :: c_int, c_double, c_size_t, c_int32_t, c_ptr
+        ! surface, elements in gmsh's node order.
+        integer(c_int) function ls_mesh_curve(surface, nverts, xyz, ntris, tris, options, mesh) &
+                bind(C, name="ls_mesh_curve")
+            import :: c_int, c_double, c_size_t, c_int32_t, c_ptr, ls_mesh_curve_options
             type(c_ptr), value :: surface
             integer(c_size_t), value :: nverts, ntris
             real(c_double), intent(in) :: xyz(*)
             integer(c_int32_t), intent(in) :: tris(*)
-            integer(c_int), value :: order
-            real(c_double), value :: max_move
-            integer(c_size_t), intent(out) :: nnodes
-            type(c_ptr), intent(out) :: nodes_xyz, node_tri, node_vw, elements
-            integer(c_int32_t), intent(out), optional :: tri_face(*)
-            real(c_double), intent(out), optional :: largest_move, min_scaled_jacobian
+            type(ls_mesh_curve_options), intent(in) :: options
+            type(c_ptr), intent(out) :: mesh
         end function
+        ! A mesh handle's arrays are borrowed (valid until ls_trimesh_free):
+        ! c_f_pointer them, or use loopsurf_trimesh_arrays.
+        integer(c_int) function ls_trimesh_counts(mesh, nnodes, nelements, nodes_per_element) &
+                bind(C, name="ls_trimesh_counts")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: mesh
+            integer(c_size_t), intent(out) :: nnodes, nelements, nodes_per_element
+        end function
+        integer(c_int) function ls_trimesh_xyz(mesh, xyz) bind(C, name="ls_trimesh_xyz")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: mesh
+            type(c_ptr), intent(out) :: xyz
+        end function
+        integer(c_int) function ls_trimesh_elements(mesh, elements) bind(C, name="ls_trimesh_elements")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: mesh
+            type(c_ptr), intent(out) :: elements
+        end function
+        integer(c_int) function ls_trimesh_node_params(mesh, node_tri, node_vw) &
+                bind(C, name="ls_trimesh_node_params")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: mesh
+            type(c_ptr), intent(out) :: node_tri, node_vw
+        end function
+        integer(c_int) function ls_trimesh_element_faces(mesh, face) bind(C, name="ls_trimesh_element_faces")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: mesh
+            type(c_ptr), intent(out) :: face
+        end function
+        integer(c_int) function ls_trimesh_element_charts(mesh, chart, chart_vw) &
+                bind(C, name="ls_trimesh_element_charts")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: mesh
+            type(c_ptr), intent(out) :: chart, chart_vw
+        end function
+        integer(c_int) function ls_trimesh_deviation(mesh, deviation) bind(C, name="ls_trimesh_deviation")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: mesh
+            real(c_double), intent(out) :: deviation
+        end function
+        integer(c_int) function ls_trimesh_largest_move(mesh, largest_move) bind(C, name="ls_trimesh_largest_move")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: mesh
+            real(c_double), intent(out) :: largest_move
+        end function
+        integer(c_int) function ls_trimesh_min_scaled_jacobian(mesh, min_scaled_jacobian) &
+                bind(C, name="ls_trimesh_min_scaled_jacobian")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: mesh
+            real(c_double), intent(out) :: min_scaled_jacobian
+        end function
+        subroutine ls_trimesh_free(mesh) bind(C, name="ls_trimesh_free")
+            import :: c_ptr
+            type(c_ptr), value :: mesh
+        end subroutine
         integer(c_int) function ls_mesh_face_labels(surface, ntris, tri_chart, tri_face) &
                 bind(C, name="ls_mesh_face_labels")
             import :: c_int, c_size_t, c_int32_t, c_ptr
@@ -293,15 +387,6 @@ module loopsurf
             type(c_ptr), intent(out) :: pairs, curves
             ! Optional: c_null_ptr skips it; c_loc of a type(c_ptr) receives it.
             type(c_ptr), value :: curve_t
-        end function
-        integer(c_int) function ls_adapt(surface, angle, tolerance, levels, to_limit, &
-                nverts, xyz, ntris, tris, vertex_tri, vertex_vw) bind(C, name="ls_adapt")
-            import :: c_int, c_double, c_size_t, c_ptr
-            type(c_ptr), value :: surface
-            real(c_double), value :: angle, tolerance
-            integer(c_int), value :: levels, to_limit
-            integer(c_size_t), intent(out) :: nverts, ntris
-            type(c_ptr), intent(out) :: xyz, tris, vertex_tri, vertex_vw
         end function
         ! The model: faces, curves, corners (0-based ids, -1 for none) and
         ! the exact limit curves, t in [0, n_edges].
@@ -580,100 +665,115 @@ contains
         lower_bound = answer%lower_bound
     end function
 
-    !> The quality remesher (ls_remesh): near-equilateral triangles on the
-    !> limit surface. size is the target edge length in model units (0 for
-    !> none), tolerance the chord tolerance relative to the bounding-box
-    !> diagonal (0 for none), adapt_curvature sizes from the curvature under
-    !> it, gradation > 1 bounds neighbouring sizes' ratio (0 for the default).
-    !> Allocates xyz(3, nverts), tris(3, ntris) with 1-BASED vertex numbers,
-    !> per vertex its 1-BASED control triangle vertex_tri(nverts) and (v, w)
-    !> vertex_vw(2, nverts), so that loopsurf_evaluate(surface, vertex_tri(i),
-    !> vertex_vw(1, i), vertex_vw(2, i), r) gives r(1:3) = xyz(:, i), and the
-    !> 1-BASED model face of each triangle tri_face(ntris). deviation is the
-    !> largest chord error measured, relative to the diagonal, or -1 when no
-    !> tolerance applied. Everything is left untouched on failure.
-    integer function loopsurf_remesh(surface, size, tolerance, adapt_curvature, gradation, &
-            xyz, tris, vertex_tri, vertex_vw, tri_face, deviation) result(status)
+    !> The arrays of a mesh handle (ls_trimesh), copied into Fortran arrays
+    !> with 1-BASED numbers: nodes(3, nnodes), elements(nodes_per_element,
+    !> nelements) of node numbers, and per node its control triangle
+    !> node_tri(nnodes) and (v, w) node_vw(2, nnodes), so that
+    !> loopsurf_evaluate(surface, node_tri(i), node_vw(1, i), node_vw(2, i),
+    !> r) gives r(1:3) = nodes(:, i).
+    integer function loopsurf_trimesh_arrays(mesh, nodes, elements, node_tri, node_vw) result(status)
+        type(c_ptr), intent(in) :: mesh
+        real(c_double), allocatable, intent(inout) :: nodes(:, :), node_vw(:, :)
+        integer, allocatable, intent(inout) :: elements(:, :), node_tri(:)
+        integer(c_size_t) :: nn, ne, per
+        type(c_ptr) :: cxyz, celems, ctri, cvw
+        real(c_double), pointer :: pxyz(:, :), pvw(:, :)
+        integer(c_int32_t), pointer :: pelems(:, :), ptri(:)
+        status = ls_trimesh_counts(mesh, nn, ne, per)
+        if (status == LS_OK) status = ls_trimesh_xyz(mesh, cxyz)
+        if (status == LS_OK) status = ls_trimesh_elements(mesh, celems)
+        if (status == LS_OK) status = ls_trimesh_node_params(mesh, ctri, cvw)
+        if (status /= LS_OK) return
+        call c_f_pointer(cxyz, pxyz, [3_c_size_t, nn])
+        call c_f_pointer(celems, pelems, [per, ne])
+        call c_f_pointer(ctri, ptri, [nn])
+        call c_f_pointer(cvw, pvw, [2_c_size_t, nn])
+        nodes = pxyz
+        elements = int(pelems) + 1
+        node_tri = int(ptri) + 1
+        node_vw = pvw
+    end function
+
+    !> The 1-BASED model face of each element of a mesh handle.
+    integer function loopsurf_trimesh_faces(mesh, faces) result(status)
+        type(c_ptr), intent(in) :: mesh
+        integer, allocatable, intent(inout) :: faces(:)
+        integer(c_size_t) :: nn, ne, per
+        type(c_ptr) :: cface
+        integer(c_int32_t), pointer :: pface(:)
+        status = ls_trimesh_counts(mesh, nn, ne, per)
+        if (status == LS_OK) status = ls_trimesh_element_faces(mesh, cface)
+        if (status /= LS_OK) return
+        call c_f_pointer(cface, pface, [ne])
+        faces = int(pface) + 1
+    end function
+
+    !> The quality remesher (ls_remesh) with its options (fill them with
+    !> ls_remesh_options_default): near-equilateral triangles on the limit
+    !> surface. Allocates xyz(3, nverts), tris(3, ntris) with 1-BASED vertex
+    !> numbers, per vertex its 1-BASED control triangle vertex_tri(nverts)
+    !> and (v, w) vertex_vw(2, nverts), and the 1-BASED model face of each
+    !> triangle tri_face(ntris). deviation is the largest chord error
+    !> measured, relative to the diagonal, or -1 when no tolerance applied.
+    !> Everything is left untouched on failure.
+    integer function loopsurf_remesh(surface, options, xyz, tris, vertex_tri, vertex_vw, tri_face, deviation) &
+            result(status)
         type(c_ptr), intent(in) :: surface
-        real(c_double), intent(in) :: size, tolerance, gradation
-        logical, intent(in) :: adapt_curvature
+        type(ls_remesh_options), intent(in) :: options
         real(c_double), allocatable, intent(inout) :: xyz(:, :), vertex_vw(:, :)
         integer, allocatable, intent(inout) :: tris(:, :), vertex_tri(:), tri_face(:)
         real(c_double), intent(inout) :: deviation
-        integer(c_size_t) :: nv, nt
-        type(c_ptr) :: cxyz, ctris, ctri, cvw, cface
+        type(c_ptr) :: mesh
         real(c_double) :: dev
-        real(c_double), pointer :: pxyz(:, :), pvw(:, :)
-        integer(c_int32_t), pointer :: ptris(:, :), ptri(:), pface(:)
-        status = ls_remesh(surface, size, tolerance, merge(1_c_int, 0_c_int, adapt_curvature), gradation, &
-            nv, cxyz, nt, ctris, ctri, cvw, cface, dev)
+        status = ls_remesh(surface, options, mesh)
         if (status /= LS_OK) return
-        call c_f_pointer(cxyz, pxyz, [3_c_size_t, nv])
-        call c_f_pointer(ctris, ptris, [3_c_size_t, nt])
-        call c_f_pointer(ctri, ptri, [nv])
-        call c_f_pointer(cvw, pvw, [2_c_size_t, nv])
-        call c_f_pointer(cface, pface, [nt])
-        xyz = pxyz
-        tris = int(ptris) + 1
-        vertex_tri = int(ptri) + 1
-        vertex_vw = pvw
-        tri_face = int(pface) + 1
-        deviation = dev
-        call ls_free_array(cxyz)
-        call ls_free_array(ctris)
-        call ls_free_array(ctri)
-        call ls_free_array(cvw)
-        call ls_free_array(cface)
+        status = loopsurf_trimesh_arrays(mesh, xyz, tris, vertex_tri, vertex_vw)
+        if (status == LS_OK) status = loopsurf_trimesh_faces(mesh, tri_face)
+        if (status == LS_OK) then
+            if (ls_trimesh_deviation(mesh, dev) /= LS_OK) dev = -1d0
+            deviation = dev
+        end if
+        call ls_trimesh_free(mesh)
     end function
 
-    !> Curves another tool's linear mesh (ls_curve): xyz(3, nverts) and
+    !> Curves another tool's linear mesh (ls_mesh_curve) with its options
+    !> (fill them with ls_mesh_curve_options_default): xyz(3, nverts) and
     !> tris(3, ntris) with 1-BASED vertex numbers, counter-clockwise like the
     !> net. Every vertex goes to its closest point on the surface (refused
-    !> beyond max_move of the diagonal; 0 for the default 1%), and every
-    !> triangle becomes a Lagrange triangle of order `order` (1 to 4).
-    !> Allocates nodes(3, nnodes) (the input vertices first), per node its
-    !> 1-BASED control triangle node_tri(nnodes) and (v, w) node_vw(2,
-    !> nnodes), elements((order+1)(order+2)/2, ntris) with 1-BASED node
-    !> numbers in gmsh's order, and the 1-BASED model face of each triangle
+    !> beyond options%max_move of the diagonal), and every triangle becomes
+    !> a Lagrange triangle of order options%order (1 to 4). Allocates
+    !> nodes(3, nnodes) (the input vertices first), per node its 1-BASED
+    !> control triangle node_tri(nnodes) and (v, w) node_vw(2, nnodes),
+    !> elements((order+1)(order+2)/2, ntris) with 1-BASED node numbers in
+    !> gmsh's order, and the 1-BASED model face of each triangle
     !> tri_face(ntris); largest_move is in model units, min_jacobian the
     !> smallest scaled Jacobian (<= 0: an element folds). Everything is left
     !> untouched on failure.
-    integer function loopsurf_curve(surface, xyz, tris, order, max_move, nodes, node_tri, node_vw, &
+    integer function loopsurf_mesh_curve(surface, xyz, tris, options, nodes, node_tri, node_vw, &
             elements, tri_face, largest_move, min_jacobian) result(status)
         type(c_ptr), intent(in) :: surface
-        real(c_double), intent(in) :: xyz(:, :), max_move
-        integer, intent(in) :: tris(:, :), order
+        real(c_double), intent(in) :: xyz(:, :)
+        integer, intent(in) :: tris(:, :)
+        type(ls_mesh_curve_options), intent(in) :: options
         real(c_double), allocatable, intent(inout) :: nodes(:, :), node_vw(:, :)
         integer, allocatable, intent(inout) :: node_tri(:), elements(:, :), tri_face(:)
         real(c_double), intent(inout) :: largest_move, min_jacobian
-        integer(c_size_t) :: nn, nt, per
-        type(c_ptr) :: cnodes, ctri, cvw, celems
-        integer(c_int32_t), allocatable :: faces(:), ctris(:, :)
+        type(c_ptr) :: mesh
+        integer(c_int32_t), allocatable :: ctris(:, :)
         real(c_double) :: moved, jac
-        real(c_double), pointer :: pnodes(:, :), pvw(:, :)
-        integer(c_int32_t), pointer :: ptri(:), pelems(:, :)
-        nt = size(tris, 2, kind=c_size_t)
-        allocate(faces(max(nt, 1_c_size_t)))
         ctris = int(tris - 1, c_int32_t)
-        status = ls_curve(surface, size(xyz, 2, kind=c_size_t), xyz, nt, ctris, int(order, c_int), &
-            max_move, nn, cnodes, ctri, cvw, celems, faces, moved, jac)
+        status = ls_mesh_curve(surface, size(xyz, 2, kind=c_size_t), xyz, size(tris, 2, kind=c_size_t), ctris, &
+            options, mesh)
         if (status /= LS_OK) return
-        per = int((order + 1) * (order + 2) / 2, c_size_t)
-        call c_f_pointer(cnodes, pnodes, [3_c_size_t, nn])
-        call c_f_pointer(ctri, ptri, [nn])
-        call c_f_pointer(cvw, pvw, [2_c_size_t, nn])
-        call c_f_pointer(celems, pelems, [per, nt])
-        nodes = pnodes
-        node_tri = int(ptri) + 1
-        node_vw = pvw
-        elements = int(pelems) + 1
-        tri_face = int(faces(1:nt)) + 1
-        largest_move = moved
-        min_jacobian = jac
-        call ls_free_array(cnodes)
-        call ls_free_array(ctri)
-        call ls_free_array(cvw)
-        call ls_free_array(celems)
+        status = ls_trimesh_largest_move(mesh, moved)
+        if (status == LS_OK) status = ls_trimesh_min_scaled_jacobian(mesh, jac)
+        if (status == LS_OK) status = loopsurf_trimesh_arrays(mesh, nodes, elements, node_tri, node_vw)
+        if (status == LS_OK) status = loopsurf_trimesh_faces(mesh, tri_face)
+        if (status == LS_OK) then
+            largest_move = moved
+            min_jacobian = jac
+        end if
+        call ls_trimesh_free(mesh)
     end function
 
     ! The model with 1-BASED ids: faces, curves, corners, triangles and

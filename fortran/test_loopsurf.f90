@@ -10,7 +10,7 @@ program test_loopsurf
     integer :: tris(3, 8), i, failures, tri, tri2
     integer(c_int32_t) :: tri0(4)
     integer(c_size_t) :: n, nv, nt, nh
-    type(c_ptr) :: net, net2, surf, surf2, surf3, bytes, rxyz, rtris, mtri, mvw
+    type(c_ptr) :: net, net2, surf, surf2, surf3, bytes, rxyz, rtris, mvw
     integer(c_int) :: major, minor, patch
     type(c_ptr) :: net3
     character(len=1024) :: tmpdir, path
@@ -80,18 +80,28 @@ program test_loopsurf
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
     ! Mesher, uniform 3 on the octahedron: 8 * 9 triangles, closed.
-    call check(ls_mesh(surf, 3_c_int, 0d0, 0d0, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw, &
-        c_null_ptr, c_null_ptr) == LS_OK, "mesh")
-    call check(nt == 72 .and. nv == 38, "mesh counts")
-    ! The tagged edge (1, 3) is the model's one curve: 3 mesh edges lie on it.
     block
+        type(ls_mesh_options) :: mo
+        type(c_ptr) :: mesh, ftris_c, ftri_c, fvw_c
+        integer(c_size_t) :: per
         integer(c_int32_t), pointer :: ftri(:), ftris(:), fcurves(:)
         real(c_double), pointer :: fvw(:)
         type(c_ptr) :: hpairs, hcurves
         integer(c_size_t) :: nhard
-        call c_f_pointer(mtri, ftri, [nv])
-        call c_f_pointer(mvw, fvw, [2 * nv])
-        call c_f_pointer(rtris, ftris, [3 * nt])
+        call check(ls_mesh_options_default(mo) == LS_OK, "mesh options")
+        call check(mo%struct_size == c_sizeof(mo) .and. mo%tolerance == 1d-3, "mesh options: defaults")
+        mo%uniform = 3
+        mo%tolerance = 0d0
+        mo%adapt_curvature = 0
+        call check(ls_mesh(surf, mo, mesh) == LS_OK, "mesh")
+        call check(ls_trimesh_counts(mesh, nv, nt, per) == LS_OK, "mesh counts")
+        call check(nt == 72 .and. nv == 38 .and. per == 3, "mesh: 72 triangles, 38 vertices")
+        ! The tagged edge (1, 3) is the model's one curve: 3 mesh edges lie on it.
+        call check(ls_trimesh_elements(mesh, ftris_c) == LS_OK, "mesh elements")
+        call check(ls_trimesh_node_params(mesh, ftri_c, fvw_c) == LS_OK, "mesh node params")
+        call c_f_pointer(ftri_c, ftri, [nv])
+        call c_f_pointer(fvw_c, fvw, [2 * nv])
+        call c_f_pointer(ftris_c, ftris, [3 * nt])
         call check(ls_mesh_hard_edges(surf, nv, ftri, fvw, nt, ftris, nhard, hpairs, hcurves, &
             c_null_ptr) == LS_OK, "mesh hard edges")
         call c_f_pointer(hcurves, fcurves, [nhard])
@@ -99,19 +109,25 @@ program test_loopsurf
         call check(all(fcurves == 0), "all on curve 0")
         call ls_free_array(hpairs)
         call ls_free_array(hcurves)
+        call ls_trimesh_free(mesh)
+        ! A budget the caller sets: uniform 10 would make 800 triangles.
+        mo%uniform = 10
+        mo%max_triangles = 100
+        call check(ls_mesh(surf, mo, mesh) == LS_ERR_OVER_BUDGET, "mesh: over the budget")
+        call check(index(loopsurf_last_error(), "over the limit of 100") > 0, "mesh: names the budget")
     end block
-    call ls_free_array(rxyz)
-    call ls_free_array(rtris)
-    call ls_free_array(mtri)
-    call ls_free_array(mvw)
     ! The quality remesher, 1-based: vertices on the surface at their
     ! parameters, faces of the model (the one curve bounds no face: 1 face).
     block
         real(c_double), allocatable :: rx(:, :), rvw(:, :)
         integer, allocatable :: rt(:, :), rtri(:), rface(:)
         real(c_double) :: dev
-        call check(loopsurf_remesh(surf, 0.3d0, 0d0, .false., 0d0, rx, rt, rtri, rvw, rface, dev) == LS_OK, &
-            "remesh")
+        type(ls_remesh_options) :: ro
+        call check(ls_remesh_options_default(ro) == LS_OK, "remesh options")
+        ro%size = 0.3d0
+        ro%tolerance = 0d0
+        ro%adapt_curvature = 0
+        call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_OK, "remesh")
         call check(size(rx, 2) > 6 .and. size(rt, 2) > 8 .and. size(rtri) == size(rx, 2), "remesh counts")
         call check(minval(rt) == 1 .and. maxval(rt) == size(rx, 2), "remesh: 1-based vertices")
         call check(minval(rtri) >= 1 .and. maxval(rtri) <= 8 .and. all(rface == 1), "remesh: triangles, faces")
@@ -119,21 +135,32 @@ program test_loopsurf
         i = size(rx, 2) / 2
         call check(loopsurf_evaluate(surf, rtri(i), rvw(1, i), rvw(2, i), r) == LS_OK, "eval remeshed vertex")
         call check(maxval(abs(r(1:3) - rx(:, i))) <= 1d-13, "remeshed vertex on the surface")
-        call check(loopsurf_remesh(surf, 0.3d0, 1d-3, .true., 1.5d0, rx, rt, rtri, rvw, rface, dev) == LS_OK, &
-            "adaptive remesh")
+        ro%tolerance = 1d-3
+        ro%adapt_curvature = 1
+        ro%gradation = 1.5d0
+        call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_OK, "adaptive remesh")
         call check(dev >= 0d0, "adaptive remesh: deviation measured")
-        call check(loopsurf_remesh(surf, 0.3d0, 0d0, .false., 0.5d0, rx, rt, rtri, rvw, rface, dev) &
+        ro%tolerance = 0d0
+        ro%adapt_curvature = 0
+        ro%gradation = 0.5d0
+        call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) &
             == LS_ERR_INVALID_ARGUMENT, "remesh: gradation 0.5")
         call check(index(loopsurf_last_error(), "gradation") > 0, "remesh: names gradation")
+        ro%gradation = 1.3d0
+        ro%size = 1d-4
+        call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_ERR_OVER_BUDGET, &
+            "remesh: over the budget")
         ! The remeshed mesh curved to P2: its vertices first and unmoved,
         ! every node on the surface at its 1-based parameters.
         block
             real(c_double), allocatable :: cn(:, :), cvw(:, :)
             integer, allocatable :: ctri(:), cel(:, :), cface(:)
             real(c_double) :: moved, jac
-            call check(loopsurf_remesh(surf, 0.4d0, 0d0, .false., 0d0, rx, rt, rtri, rvw, rface, dev) == LS_OK, &
-                "remesh for curve")
-            call check(loopsurf_curve(surf, rx, rt, 2, 0d0, cn, ctri, cvw, cel, cface, moved, jac) == LS_OK, &
+            type(ls_mesh_curve_options) :: co
+            ro%size = 0.4d0
+            call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_OK, "remesh for curve")
+            call check(ls_mesh_curve_options_default(co) == LS_OK .and. co%order == 2, "curve options")
+            call check(loopsurf_mesh_curve(surf, rx, rt, co, cn, ctri, cvw, cel, cface, moved, jac) == LS_OK, &
                 "curve")
             call check(size(cel, 1) == 6 .and. size(cel, 2) == size(rt, 2), "curve: P2 elements")
             call check(all(cel(1:3, :) == rt), "curve: vertices first")
@@ -143,20 +170,28 @@ program test_loopsurf
                 call check(loopsurf_evaluate(surf, ctri(i), cvw(1, i), cvw(2, i), r) == LS_OK, "eval node")
                 call check(maxval(abs(r(1:3) - cn(:, i))) <= 1d-12, "node on the surface")
             end do
-            call check(loopsurf_curve(surf, rx, rt, 7, 0d0, cn, ctri, cvw, cel, cface, moved, jac) &
+            co%order = 7
+            call check(loopsurf_mesh_curve(surf, rx, rt, co, cn, ctri, cvw, cel, cface, moved, jac) &
                 == LS_ERR_INVALID_ARGUMENT, "curve: order 7")
             call check(index(loopsurf_last_error(), "order") > 0, "curve: names the order")
         end block
     end block
     ! Adaptive subdivision at angle 0 is uniform: 8 * 4**2 triangles, closed.
-    call check(ls_adapt(surf, 0d0, 0d0, 2_c_int, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw) == LS_OK, "adapt")
-    call check(nt == 128 .and. nv == 66, "adapt counts")
-    call ls_free_array(rxyz)
-    call ls_free_array(rtris)
-    call ls_free_array(mtri)
-    call ls_free_array(mvw)
-    call check(ls_adapt(surf, 5d0, 0d0, 11_c_int, 0_c_int, nv, rxyz, nt, rtris, mtri, mvw) &
-        == LS_ERR_INVALID_ARGUMENT, "adapt levels 11")
+    block
+        type(ls_adapt_options) :: ao
+        type(c_ptr) :: mesh
+        integer(c_size_t) :: per
+        call check(ls_adapt_options_default(ao) == LS_OK, "adapt options")
+        ao%angle = 0d0
+        ao%levels = 2
+        call check(ls_adapt(surf, ao, mesh) == LS_OK, "adapt")
+        call check(ls_trimesh_counts(mesh, nv, nt, per) == LS_OK, "adapt counts")
+        call check(nt == 128 .and. nv == 66, "adapt: 128 triangles, 66 vertices")
+        call ls_trimesh_free(mesh)
+        ao%angle = 5d0
+        ao%levels = 11
+        call check(ls_adapt(surf, ao, mesh) == LS_ERR_INVALID_ARGUMENT, "adapt levels 11")
+    end block
     call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
     call ls_free_array(rxyz)
     ! The octahedron's surface does not fold, nor does its net.
@@ -227,7 +262,7 @@ program test_loopsurf
     call test_model()
 
     call ls_version(major, minor, patch)
-    call check(major == 0 .and. minor >= 1, "version")
+    call check(major == 1 .and. minor >= 0, "version")
 
     call ls_surface_free(surf)
     call ls_surface_free(surf2)

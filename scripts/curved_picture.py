@@ -8,7 +8,7 @@ Standard library only.
 
     python3 scripts/curved_picture.py OUT.svg "title" A.vtu ["title" B.vtu ...]
 
-`scripts/pictures.sh` makes the README's picture with it.
+`scripts/pictures.sh` makes the picture in docs/high-order.md with it.
 """
 
 import sys

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Remakes the README's pictures: mesh quality (docs/remesh-viking.svg), the
+# Remakes the pictures of the README and docs/: mesh quality (docs/remesh-viking.svg), the
 # built-in Viking at 4% of its diagonal, the chart mesher against the
 # remesher, each triangle coloured by its smallest angle; and curved
 # elements (docs/curved-viking.svg), the Viking's adaptive mesh at

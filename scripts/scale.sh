@@ -1,5 +1,5 @@
 #!/bin/bash
-# The build at scale (issue 20): bunny00 refined three times (4.8M
+# The build at scale (docs/benchmarks.md): bunny00 refined three times (4.8M
 # triangles) loaded as a control net, built on one thread, then its first
 # snap; prints times and bytes per control triangle. Needs the CGAL meshes
 # (scripts/test.sh extracts them) and about 12 GB of memory.

@@ -1,4 +1,4 @@
-"""The 3D helpers the README's picture scripts share (mesh_picture.py,
+"""The 3D helpers the picture scripts share (mesh_picture.py,
 curved_picture.py): vectors as tuples, and the fixed orthographic view.
 Standard library only."""
 

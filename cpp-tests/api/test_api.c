@@ -93,7 +93,7 @@ static ls_surface* octahedron(ls_net** net_out) {
 static void test_version_and_strings(void) {
     int major = -1, minor = -1, patch = -1;
     ls_version(&major, &minor, &patch);
-    CHECK(major == 0 && minor == 1 && patch >= 0);
+    CHECK(major == 1 && minor == 0 && patch >= 0);
     ls_version(NULL, NULL, NULL); /* tolerated */
     const int codes[] = {LS_OK, LS_ERR_NULL_POINTER, LS_ERR_IO, LS_ERR_PARSE, LS_ERR_NON_MANIFOLD,
                          LS_ERR_DEGENERATE, LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_PARAMETER_OUT_OF_RANGE,
@@ -550,56 +550,123 @@ static void test_refine(void) {
     ls_surface_free(surface);
 }
 
+/* A straight mesh's arrays, borrowed from its ls_trimesh (valid until
+ * ls_trimesh_free). */
+typedef struct {
+    size_t nv, nt;
+    const double *xyz, *vw;
+    const int32_t *tris, *vtri;
+} mesh_view;
+
+static mesh_view view(const ls_trimesh* mesh) {
+    mesh_view m = {0, 0, NULL, NULL, NULL, NULL};
+    size_t per = 0;
+    EXPECT(ls_trimesh_counts(mesh, &m.nv, &m.nt, &per), LS_OK);
+    CHECK(per == 3);
+    EXPECT(ls_trimesh_xyz(mesh, &m.xyz), LS_OK);
+    EXPECT(ls_trimesh_elements(mesh, &m.tris), LS_OK);
+    EXPECT(ls_trimesh_node_params(mesh, &m.vtri, &m.vw), LS_OK);
+    return m;
+}
+
 /* ls_mesh: every vertex is the surface at its parameters, every triangle's
  * corners are the surface at their chart parameters, the closed octahedron
- * gives a closed mesh (V - E + F = 2), and bad arguments fail cleanly. */
+ * gives a closed mesh (V - E + F = 2), and bad options fail cleanly, each
+ * naming its field, with the output untouched. */
 static void test_mesh(void) {
     ls_surface* surface = octahedron(NULL);
-    size_t nv = 0, nt = 0;
-    double *xyz = NULL, *vw = NULL, *tvw = NULL;
-    int32_t *tris = NULL, *vtri = NULL, *chart = NULL;
     double r[18];
-    EXPECT(ls_mesh(surface, 3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &chart, &tvw), LS_OK);
-    CHECK(nt == 8 * 9);
-    CHECK(nv == 6 + 12 * 2 + 8 * 1);
-    CHECK(euler(nv, tris, nt) == 2);
-    for (size_t i = 0; i < nv; i++) {
-        EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
-        for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - xyz[3 * i + k]) < 1e-13);
+    ls_mesh_options o;
+    EXPECT(ls_mesh_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.uniform == 0 && o.size == 0 && o.tolerance == 1e-3 && o.adapt_curvature == 1);
+    CHECK(o.max_triangles == 200000000);
+    o.uniform = 3;
+    o.tolerance = 0;
+    o.adapt_curvature = 0;
+    ls_trimesh* mesh = NULL;
+    EXPECT(ls_mesh(surface, &o, &mesh), LS_OK);
+    mesh_view m = view(mesh);
+    CHECK(m.nt == 8 * 9);
+    CHECK(m.nv == 6 + 12 * 2 + 8 * 1);
+    CHECK(euler(m.nv, m.tris, m.nt) == 2);
+    for (size_t i = 0; i < m.nv; i++) {
+        EXPECT(ls_evaluate(surface, m.vtri[i], m.vw[2 * i], m.vw[2 * i + 1], r), LS_OK);
+        for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - m.xyz[3 * i + k]) < 1e-13);
     }
-    for (size_t t = 0; t < nt; t++) {
+    const int32_t *chart = NULL, *face = NULL;
+    const double* tvw = NULL;
+    EXPECT(ls_trimesh_element_charts(mesh, &chart, &tvw), LS_OK);
+    EXPECT(ls_trimesh_element_faces(mesh, &face), LS_OK);
+    for (size_t t = 0; t < m.nt; t++) {
+        CHECK(face[t] == 0); /* one face: no hard edges */
         for (int c = 0; c < 3; c++) {
-            int32_t v = tris[3 * t + c];
+            int32_t v = m.tris[3 * t + c];
             EXPECT(ls_evaluate(surface, chart[t], tvw[6 * t + 2 * c], tvw[6 * t + 2 * c + 1], r), LS_OK);
-            for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - xyz[3 * v + k]) < 1e-13);
+            for (int k = 0; k < 3; k++) CHECK(fabs(r[k] - m.xyz[3 * v + k]) < 1e-13);
         }
     }
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
-    ls_free_array(chart);
-    ls_free_array(tvw);
+    /* Measures the chart mesher does not take are refused by name. */
+    double dev = SENTINEL;
+    EXPECT(ls_trimesh_deviation(mesh, &dev), LS_ERR_UNSUPPORTED);
+    CHECK(strstr(ls_last_error(), "ls_trimesh_deviation") != NULL && dev == SENTINEL);
+    EXPECT(ls_trimesh_largest_move(mesh, &dev), LS_ERR_UNSUPPORTED);
+    EXPECT(ls_trimesh_min_scaled_jacobian(mesh, &dev), LS_ERR_UNSUPPORTED);
+    CHECK(dev == SENTINEL);
+    EXPECT(ls_trimesh_xyz(NULL, &m.xyz), LS_ERR_NULL_POINTER);
+    EXPECT(ls_trimesh_xyz(mesh, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_trimesh_counts(mesh, &m.nv, NULL, &m.nt), LS_ERR_NULL_POINTER);
+    ls_trimesh_free(mesh);
+    ls_trimesh_free(NULL);
 
-    /* Tolerance-driven and adaptive, optional outputs skipped. */
-    EXPECT(ls_mesh(surface, 0, 0, 1e-3, 1, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
-    CHECK(nt > 8 && euler(nv, tris, nt) == 2);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
+    /* NULL options: the defaults, tolerance-driven and adaptive. */
+    mesh = NULL;
+    EXPECT(ls_mesh(surface, NULL, &mesh), LS_OK);
+    m = view(mesh);
+    CHECK(m.nt > 8 && euler(m.nv, m.tris, m.nt) == 2);
+    ls_trimesh_free(mesh);
 
-    xyz = (double*)&SENTINEL;
-    EXPECT(ls_mesh(NULL, 2, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_NULL_POINTER);
-    EXPECT(ls_mesh(surface, 2, 0, 0, 0, &nv, NULL, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_NULL_POINTER);
-    EXPECT(ls_mesh(surface, 2, 0, 0, 0, &nv, &xyz, &nt, &tris, NULL, &vw, NULL, NULL), LS_ERR_NULL_POINTER);
-    EXPECT(ls_mesh(surface, -1, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
-    EXPECT(ls_mesh(surface, 2, 0.1, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
-    EXPECT(ls_mesh(surface, 0, 0, 2.0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
-    CHECK(strstr(ls_last_error(), "ls_mesh") != NULL);
-    CHECK(strstr(ls_last_error(), "tolerance") != NULL);
-    EXPECT(ls_mesh(surface, 0, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_ERR_INVALID_ARGUMENT);
-    CHECK(xyz == (double*)&SENTINEL); /* outputs untouched on failure */
+    /* Refusals, each naming its field; the output untouched. */
+    ls_trimesh* const untouched = (ls_trimesh*)&SENTINEL;
+    mesh = untouched;
+    ls_mesh_options bad;
+    EXPECT(ls_mesh(NULL, &o, &mesh), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh(surface, &o, NULL), LS_ERR_NULL_POINTER);
+    struct {
+        int uniform;
+        double size, tolerance;
+        int adapt;
+        size_t max_triangles;
+        int status;
+        const char* name;
+    } cases[] = {
+        {-1, 0, 0, 0, 100, LS_ERR_INVALID_ARGUMENT, "uniform"},
+        {2, 0.1, 0, 0, 100, LS_ERR_INVALID_ARGUMENT, "size"},
+        {0, 0, 2.0, 0, 100, LS_ERR_INVALID_ARGUMENT, "tolerance"},
+        {0, 0, NAN, 0, 100, LS_ERR_INVALID_ARGUMENT, "tolerance"},
+        {0, 0, 0, 0, 100, LS_ERR_INVALID_ARGUMENT, "tolerance"},
+        {2, 0, 0, 2, 100, LS_ERR_INVALID_ARGUMENT, "adapt_curvature"},
+        {2, 0, 0, 0, 0, LS_ERR_INVALID_ARGUMENT, "max_triangles"},
+        /* 8 * 10^2 triangles over a budget of 100: refused before meshing. */
+        {10, 0, 0, 0, 100, LS_ERR_OVER_BUDGET, "over the limit of 100"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        EXPECT(ls_mesh_options_default(&bad), LS_OK);
+        bad.uniform = cases[i].uniform;
+        bad.size = cases[i].size;
+        bad.tolerance = cases[i].tolerance;
+        bad.adapt_curvature = cases[i].adapt;
+        bad.max_triangles = cases[i].max_triangles;
+        EXPECT(ls_mesh(surface, &bad, &mesh), cases[i].status);
+        CHECK(strstr(ls_last_error(), "ls_mesh: ") == ls_last_error());
+        CHECK(strstr(ls_last_error(), cases[i].name) != NULL);
+    }
+    /* A struct_size no version of the struct had. */
+    EXPECT(ls_mesh_options_default(&bad), LS_OK);
+    bad.struct_size = sizeof(size_t);
+    EXPECT(ls_mesh(surface, &bad, &mesh), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "struct_size") != NULL);
+    EXPECT(ls_mesh_options_default(NULL), LS_ERR_NULL_POINTER);
+    CHECK(mesh == untouched); /* outputs untouched on failure */
     ls_surface_free(surface);
 }
 
@@ -641,14 +708,23 @@ static void test_mesh_labels(const char* data_dir) {
     }
     for (int f = 0; f < 12; f++) CHECK(seen_face[f]);
 
-    size_t nv = 0, nt = 0;
-    double *xyz = NULL, *vw = NULL;
-    int32_t *tris = NULL, *vtri = NULL, *chart = NULL;
-    EXPECT(ls_mesh(surface, 2, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &chart, NULL), LS_OK);
+    ls_mesh_options o;
+    EXPECT(ls_mesh_options_default(&o), LS_OK);
+    o.uniform = 2;
+    o.tolerance = 0;
+    o.adapt_curvature = 0;
+    ls_trimesh* mesh = NULL;
+    EXPECT(ls_mesh(surface, &o, &mesh), LS_OK);
+    const mesh_view m = view(mesh);
+    const size_t nv = m.nv, nt = m.nt;
+    const double *vw = m.vw, *tvw = NULL;
+    const int32_t *tris = m.tris, *vtri = m.vtri, *chart = NULL, *mesh_face = NULL;
+    EXPECT(ls_trimesh_element_charts(mesh, &chart, &tvw), LS_OK);
+    EXPECT(ls_trimesh_element_faces(mesh, &mesh_face), LS_OK);
     CHECK(nt == 4 * nct);
     int32_t* face = malloc(nt * sizeof *face);
     EXPECT(ls_mesh_face_labels(surface, nt, chart, face), LS_OK);
-    for (size_t t = 0; t < nt; t++) CHECK(face[t] == ctrl_face[chart[t]]);
+    for (size_t t = 0; t < nt; t++) CHECK(face[t] == ctrl_face[chart[t]] && mesh_face[t] == face[t]);
 
     size_t nh = 0;
     int32_t *pairs = NULL, *curves = NULL;
@@ -752,11 +828,7 @@ static void test_mesh_labels(const char* data_dir) {
     ls_free_array(curves);
     ls_free_array(ct);
     free(face);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
-    ls_free_array(chart);
+    ls_trimesh_free(mesh);
     free(ctrl_face);
     free(ident);
     ls_surface_free(surface);
@@ -823,13 +895,27 @@ static double diagonal(const double* xyz, size_t n) {
  * (tri, v, w) to 1e-12 of the diagonal, the mesh is closed and oriented,
  * no angle is below 20°, and every face id is one of the model's. */
 static void check_remesh(ls_surface* surface, double h, double diag) {
-    size_t nv = 0, nt = 0, nfaces = 0, ncurves = 0, ncorners = 0;
+    size_t nfaces = 0, ncurves = 0, ncorners = 0;
     EXPECT(ls_model_counts(surface, &nfaces, &ncurves, &ncorners), LS_OK);
-    double *xyz = NULL, *vw = NULL, dev = SENTINEL;
-    int32_t *tris = NULL, *vtri = NULL, *face = NULL;
-    double r[18];
-    EXPECT(ls_remesh(surface, h, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_OK);
-    CHECK(nv > 0 && nt > 0 && dev == -1.0);
+    double r[18], dev = SENTINEL;
+    ls_remesh_options o;
+    EXPECT(ls_remesh_options_default(&o), LS_OK);
+    o.size = h;
+    o.tolerance = 0;
+    o.adapt_curvature = 0;
+    ls_trimesh* mesh = NULL;
+    EXPECT(ls_remesh(surface, &o, &mesh), LS_OK);
+    const mesh_view m = view(mesh);
+    const size_t nv = m.nv, nt = m.nt;
+    const double *xyz = m.xyz, *vw = m.vw;
+    const int32_t *tris = m.tris, *vtri = m.vtri, *face = NULL;
+    EXPECT(ls_trimesh_element_faces(mesh, &face), LS_OK);
+    /* No tolerance: nothing measured; no charts: triangles span several. */
+    EXPECT(ls_trimesh_deviation(mesh, &dev), LS_ERR_UNSUPPORTED);
+    const int32_t* chart = NULL;
+    const double* chart_vw = NULL;
+    EXPECT(ls_trimesh_element_charts(mesh, &chart, &chart_vw), LS_ERR_UNSUPPORTED);
+    CHECK(nv > 0 && nt > 0 && dev == SENTINEL && chart == NULL);
     size_t ntri = 0;
     EXPECT(ls_surface_num_triangles(surface, &ntri), LS_OK);
     double worst = 0;
@@ -870,11 +956,7 @@ static void check_remesh(ls_surface* surface, double h, double diag) {
     ls_free_array(pairs);
     ls_free_array(curves);
     ls_free_array(ct);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
-    ls_free_array(face);
+    ls_trimesh_free(mesh);
 }
 
 /* ls_remesh: the checks above on the octahedron and on fandisk tagged at
@@ -885,66 +967,90 @@ static void test_remesh(const char* data_dir) {
     const double octa_diag = 2 * sqrt(3.0);
     check_remesh(surface, 0.3, octa_diag);
 
-    /* Adaptive under a tolerance: the chord error measured, within it here;
-       tri_face and deviation may be skipped. */
-    size_t nv = 0, nt = 0;
-    double *xyz = NULL, *vw = NULL, dev = -5;
-    int32_t *tris = NULL, *vtri = NULL, *face = NULL;
-    EXPECT(ls_remesh(surface, 0.3, 1e-2, 1, 1.5, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, &dev), LS_OK);
-    CHECK(nt > 8 && closed_edges(tris, nt) > 0);
+    /* Adaptive under a tolerance: the chord error measured, within it here. */
+    ls_remesh_options o;
+    EXPECT(ls_remesh_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.size == 0 && o.tolerance == 1e-3 && o.adapt_curvature == 1);
+    CHECK(o.gradation == 1.3 && o.max_triangles == 20000000);
+    o.size = 0.3;
+    o.tolerance = 1e-2;
+    o.gradation = 1.5;
+    ls_trimesh* mesh = NULL;
+    double dev = -5;
+    EXPECT(ls_remesh(surface, &o, &mesh), LS_OK);
+    mesh_view m = view(mesh);
+    EXPECT(ls_trimesh_deviation(mesh, &dev), LS_OK);
+    CHECK(m.nt > 8 && closed_edges(m.tris, m.nt) > 0);
     CHECK(dev >= 0 && dev <= 1e-2);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
-    EXPECT(ls_remesh(surface, 0.5, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
-    CHECK(euler(nv, tris, nt) == 2);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
+    ls_trimesh_free(mesh);
+    /* NULL options: the defaults (curvature under 1e-3). */
+    EXPECT(ls_remesh(surface, NULL, &mesh), LS_OK);
+    m = view(mesh);
+    CHECK(euler(m.nv, m.tris, m.nt) == 2);
+    EXPECT(ls_trimesh_deviation(mesh, &dev), LS_OK);
+    CHECK(dev >= 0 && dev <= 1e-3);
+    ls_trimesh_free(mesh);
 
-    /* Refusals, each naming its argument; outputs untouched. */
-    xyz = (double*)&SENTINEL;
-    face = (int32_t*)&SENTINEL;
-    nv = 77;
-    dev = -5;
+    /* Refusals, each naming its field; the output untouched. */
+    ls_trimesh* const untouched = (ls_trimesh*)&SENTINEL;
+    mesh = untouched;
     struct {
         double size, tolerance;
         int adapt;
         double gradation;
+        size_t max_triangles;
         const char* name;
     } bad[] = {
-        {-1, 0, 0, 0, "size"},
-        {NAN, 0, 0, 0, "size"},
-        {INFINITY, 0, 0, 0, "size"},
-        {0.3, -1e-3, 0, 0, "tolerance"},
-        {0.3, NAN, 0, 0, "tolerance"},
-        {0.3, 1.0, 0, 0, "tolerance"},
-        {0.3, 0, 2, 0, "adapt_curvature"},
-        {0.3, 0, -1, 0, "adapt_curvature"},
-        {0.3, 0, 1, 0.5, "gradation"},
-        {0.3, 0, 1, 1.0, "gradation"},
-        {0.3, 0, 1, -2, "gradation"},
-        {0.3, 0, 1, NAN, "gradation"},
+        {-1, 0, 0, 1.3, 100, "size"},
+        {NAN, 0, 0, 1.3, 100, "size"},
+        {INFINITY, 0, 0, 1.3, 100, "size"},
+        {0.3, -1e-3, 0, 1.3, 100, "tolerance"},
+        {0.3, NAN, 0, 1.3, 100, "tolerance"},
+        {0.3, 1.0, 0, 1.3, 100, "tolerance"},
+        {0.3, 0, 2, 1.3, 100, "adapt_curvature"},
+        {0.3, 0, -1, 1.3, 100, "adapt_curvature"},
+        {0.3, 0, 1, 0.5, 100, "gradation"},
+        {0.3, 0, 1, 1.0, 100, "gradation"},
+        {0.3, 0, 1, -2, 100, "gradation"},
+        {0.3, 0, 1, NAN, 100, "gradation"},
+        {0.3, 0, 1, 0, 100, "gradation"},
+        {0.3, 0, 0, 1.3, 0, "max_triangles"},
     };
+    ls_remesh_options b;
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
-        EXPECT(ls_remesh(surface, bad[i].size, bad[i].tolerance, bad[i].adapt, bad[i].gradation, &nv, &xyz, &nt,
-                         &tris, &vtri, &vw, &face, &dev),
-               LS_ERR_INVALID_ARGUMENT);
+        EXPECT(ls_remesh_options_default(&b), LS_OK);
+        b.size = bad[i].size;
+        b.tolerance = bad[i].tolerance;
+        b.adapt_curvature = bad[i].adapt;
+        b.gradation = bad[i].gradation;
+        b.max_triangles = bad[i].max_triangles;
+        EXPECT(ls_remesh(surface, &b, &mesh), LS_ERR_INVALID_ARGUMENT);
         CHECK(strstr(ls_last_error(), "ls_remesh: ") == ls_last_error());
         CHECK(strstr(ls_last_error(), bad[i].name) != NULL);
     }
     /* No density at all. */
-    EXPECT(ls_remesh(surface, 0, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_INVALID_ARGUMENT);
-    /* Over the budget of 20 million triangles: refused before meshing, with the count. */
-    EXPECT(ls_remesh(surface, 1e-4, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_remesh_options_default(&b), LS_OK);
+    b.tolerance = 0;
+    b.adapt_curvature = 0;
+    EXPECT(ls_remesh(surface, &b, &mesh), LS_ERR_INVALID_ARGUMENT);
+    /* Over the default budget of 20 million triangles: refused before
+       meshing, with its own status and the count. */
+    b.size = 1e-4;
+    EXPECT(ls_remesh(surface, &b, &mesh), LS_ERR_OVER_BUDGET);
     CHECK(strstr(ls_last_error(), "over the budget of 20000000") != NULL);
-    EXPECT(ls_remesh(NULL, 0.3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, &face, &dev), LS_ERR_NULL_POINTER);
-    EXPECT(ls_remesh(surface, 0.3, 0, 0, 0, &nv, &xyz, NULL, &tris, &vtri, &vw, &face, &dev), LS_ERR_NULL_POINTER);
-    CHECK(strstr(ls_last_error(), "ntris") != NULL);
-    EXPECT(ls_remesh(surface, 0.3, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, NULL, &face, &dev), LS_ERR_NULL_POINTER);
-    CHECK(xyz == (double*)&SENTINEL && face == (int32_t*)&SENTINEL && nv == 77 && dev == -5);
+    /* A budget the caller sets. */
+    b.size = 0.05;
+    b.max_triangles = 1000;
+    EXPECT(ls_remesh(surface, &b, &mesh), LS_ERR_OVER_BUDGET);
+    CHECK(strstr(ls_last_error(), "over the budget of 1000") != NULL);
+    b.max_triangles = 100000;
+    ls_trimesh* fits = NULL;
+    EXPECT(ls_remesh(surface, &b, &fits), LS_OK);
+    ls_trimesh_free(fits);
+    EXPECT(ls_remesh(NULL, &o, &mesh), LS_ERR_NULL_POINTER);
+    EXPECT(ls_remesh(surface, &o, NULL), LS_ERR_NULL_POINTER);
+    CHECK(strstr(ls_last_error(), "mesh") != NULL);
+    CHECK(mesh == untouched);
     ls_surface_free(surface);
 
     /* fandisk, hard edges by angle: 12 faces, the model's. */
@@ -971,52 +1077,74 @@ static void test_remesh(const char* data_dir) {
     ls_net_free(net);
 }
 
+/* One ls_adapt call with the given options; its mesh, or NULL. */
+static ls_trimesh* adapt(ls_surface* surface, double angle, double tolerance, int levels, int to_limit, int status) {
+    ls_adapt_options o;
+    EXPECT(ls_adapt_options_default(&o), LS_OK);
+    o.angle = angle;
+    o.tolerance = tolerance;
+    o.levels = levels;
+    o.to_limit = to_limit;
+    ls_trimesh* mesh = NULL;
+    EXPECT(ls_adapt(surface, &o, &mesh), status);
+    return mesh;
+}
+
 static void test_adapt(void) {
     ls_surface* surface = octahedron(NULL);
-    size_t nv = 0, nt = 0;
-    double *xyz = NULL, *vw = NULL;
-    int32_t *tris = NULL, *vtri = NULL;
     double r[18];
+    ls_adapt_options o;
+    EXPECT(ls_adapt_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.angle == 10 && o.tolerance == 0 && o.levels == 3 && o.to_limit == 0);
     /* Angle 0 is uniform Loop: 8 * 4^2 triangles, closed. */
-    EXPECT(ls_adapt(surface, 0.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
-    CHECK(nt == 128 && euler(nv, tris, nt) == 2);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
+    ls_trimesh* mesh = adapt(surface, 0.0, 0.0, 2, 0, LS_OK);
+    mesh_view m = view(mesh);
+    CHECK(m.nt == 128 && euler(m.nv, m.tris, m.nt) == 2);
+    const int32_t* face = NULL;
+    EXPECT(ls_trimesh_element_faces(mesh, &face), LS_ERR_UNSUPPORTED);
+    ls_trimesh_free(mesh);
     /* Adaptive, pushed to the limit: fewer triangles, still closed, every
        vertex the surface at its parameters. */
-    EXPECT(ls_adapt(surface, 20.0, 0.0, 4, 1, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
-    CHECK(nt < 8 * 256 && nt > 8 && euler(nv, tris, nt) == 2);
-    for (size_t i = 0; i < nv; i++) {
-        EXPECT(ls_evaluate(surface, vtri[i], vw[2 * i], vw[2 * i + 1], r), LS_OK);
-        for (int k = 0; k < 3; k++) CHECK(r[k] == xyz[3 * i + k]);
+    mesh = adapt(surface, 20.0, 0.0, 4, 1, LS_OK);
+    m = view(mesh);
+    CHECK(m.nt < 8 * 256 && m.nt > 8 && euler(m.nv, m.tris, m.nt) == 2);
+    for (size_t i = 0; i < m.nv; i++) {
+        EXPECT(ls_evaluate(surface, m.vtri[i], m.vw[2 * i], m.vw[2 * i + 1], r), LS_OK);
+        for (int k = 0; k < 3; k++) CHECK(r[k] == m.xyz[3 * i + k]);
     }
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
+    ls_trimesh_free(mesh);
     /* Tolerance only. */
-    EXPECT(ls_adapt(surface, -1.0, 1e-2, 5, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_OK);
-    CHECK(nt < 8 * 1024 && nv - (3 * nt) / 2 + nt == 2);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
+    mesh = adapt(surface, -1.0, 1e-2, 5, 0, LS_OK);
+    m = view(mesh);
+    CHECK(m.nt < 8 * 1024 && m.nv - (3 * m.nt) / 2 + m.nt == 2);
+    ls_trimesh_free(mesh);
+    /* NULL options: the defaults. */
+    EXPECT(ls_adapt(surface, NULL, &mesh), LS_OK);
+    m = view(mesh);
+    CHECK(m.nt > 8 && m.nt <= 8 * 64 && euler(m.nv, m.tris, m.nt) == 2);
+    ls_trimesh_free(mesh);
 
-    xyz = (double*)&SENTINEL;
-    EXPECT(ls_adapt(NULL, 5.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_NULL_POINTER);
-    EXPECT(ls_adapt(surface, 5.0, 0.0, 2, 0, &nv, &xyz, &nt, NULL, &vtri, &vw), LS_ERR_NULL_POINTER);
-    EXPECT(ls_adapt(surface, 5.0, 0.0, 11, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    ls_trimesh* const untouched = (ls_trimesh*)&SENTINEL;
+    mesh = untouched;
+    EXPECT(ls_adapt(NULL, &o, &mesh), LS_ERR_NULL_POINTER);
+    EXPECT(ls_adapt(surface, &o, NULL), LS_ERR_NULL_POINTER);
+    adapt(surface, 5.0, 0.0, 11, 0, LS_ERR_INVALID_ARGUMENT);
     CHECK(strstr(ls_last_error(), "ls_adapt") != NULL);
     CHECK(strstr(ls_last_error(), "levels 11") != NULL);
-    EXPECT(ls_adapt(surface, 5.0, 0.0, -1, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
-    EXPECT(ls_adapt(surface, 200.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
-    EXPECT(ls_adapt(surface, -1.0, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
+    adapt(surface, 5.0, 0.0, -1, 0, LS_ERR_INVALID_ARGUMENT);
+    adapt(surface, 200.0, 0.0, 2, 0, LS_ERR_INVALID_ARGUMENT);
+    adapt(surface, -1.0, 0.0, 2, 0, LS_ERR_INVALID_ARGUMENT);
     CHECK(strstr(ls_last_error(), "no criterion") != NULL);
-    EXPECT(ls_adapt(surface, -1.0, 2.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
-    EXPECT(ls_adapt(surface, NAN, 0.0, 2, 0, &nv, &xyz, &nt, &tris, &vtri, &vw), LS_ERR_INVALID_ARGUMENT);
-    CHECK(xyz == (double*)&SENTINEL); /* outputs untouched on failure */
+    adapt(surface, -1.0, 2.0, 2, 0, LS_ERR_INVALID_ARGUMENT);
+    adapt(surface, NAN, 0.0, 2, 0, LS_ERR_INVALID_ARGUMENT);
+    adapt(surface, 5.0, 0.0, 2, 2, LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "to_limit") != NULL);
+    /* A budget: the third level of uniform subdivision would reach 512. */
+    o.angle = 0;
+    o.max_triangles = 500;
+    EXPECT(ls_adapt(surface, &o, &mesh), LS_ERR_OVER_BUDGET);
+    CHECK(strstr(ls_last_error(), "over the limit of 500") != NULL);
+    CHECK(mesh == untouched); /* outputs untouched on failure */
     ls_surface_free(surface);
 }
 
@@ -1071,24 +1199,47 @@ static void test_streams(void) {
     ls_net_free(net);
 }
 
-/* ls_curve: a mesh made by ls_remesh on the octahedron, curved to P2 and
-   P3: the vertices stay (they move by round-off at most), every node is ls_evaluate of its
-   (tri, v, w), each edge's inner nodes are shared by its two triangles,
-   and bad arguments are refused by name with the outputs untouched. */
-static void test_curve(void) {
+/* ls_mesh_curve: a mesh made by ls_remesh on the octahedron, curved to P2
+   and P3: the vertices stay (they move by round-off at most), every node
+   is ls_evaluate of its (tri, v, w), each edge's inner nodes are shared by
+   its two triangles, and bad arguments are refused by name with the
+   output untouched. */
+static void test_mesh_curve(void) {
     ls_surface* surface = octahedron(NULL);
-    size_t nv = 0, nt = 0;
-    double *xyz = NULL, *vw = NULL;
-    int32_t *tris = NULL, *vtri = NULL;
-    EXPECT(ls_remesh(surface, 0.4, 0, 0, 0, &nv, &xyz, &nt, &tris, &vtri, &vw, NULL, NULL), LS_OK);
+    ls_remesh_options ro;
+    EXPECT(ls_remesh_options_default(&ro), LS_OK);
+    ro.size = 0.4;
+    ro.tolerance = 0;
+    ro.adapt_curvature = 0;
+    ls_trimesh* linear = NULL;
+    EXPECT(ls_remesh(surface, &ro, &linear), LS_OK);
+    const mesh_view m = view(linear);
+    const size_t nv = m.nv, nt = m.nt;
+    /* Another tool's mesh: arrays the caller owns. */
+    double* xyz = malloc(3 * nv * sizeof *xyz);
+    int32_t* tris = malloc(3 * nt * sizeof *tris);
+    memcpy(xyz, m.xyz, 3 * nv * sizeof *xyz);
+    memcpy(tris, m.tris, 3 * nt * sizeof *tris);
+    ls_trimesh_free(linear);
+    ls_mesh_curve_options o;
+    EXPECT(ls_mesh_curve_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.order == 2 && o.max_move == 0.01);
     for (int order = 2; order <= 3; order++) {
-        size_t nn = 0;
-        double *nodes = NULL, *nvw = NULL, moved = -1, jac = -5;
-        int32_t *ntri = NULL, *elems = NULL;
-        int32_t* face = malloc(nt * sizeof *face);
-        EXPECT(ls_curve(surface, nv, xyz, nt, tris, order, 0, &nn, &nodes, &ntri, &nvw, &elems, face, &moved, &jac),
-               LS_OK);
-        size_t per = (size_t)(order + 1) * (order + 2) / 2;
+        o.order = order;
+        ls_trimesh* mesh = NULL;
+        EXPECT(ls_mesh_curve(surface, nv, xyz, nt, tris, &o, &mesh), LS_OK);
+        size_t nn = 0, ne = 0, per = 0;
+        double moved = -1, jac = -5;
+        const double *nodes = NULL, *nvw = NULL;
+        const int32_t *ntri = NULL, *elems = NULL, *face = NULL;
+        EXPECT(ls_trimesh_counts(mesh, &nn, &ne, &per), LS_OK);
+        EXPECT(ls_trimesh_xyz(mesh, &nodes), LS_OK);
+        EXPECT(ls_trimesh_elements(mesh, &elems), LS_OK);
+        EXPECT(ls_trimesh_node_params(mesh, &ntri, &nvw), LS_OK);
+        EXPECT(ls_trimesh_element_faces(mesh, &face), LS_OK);
+        EXPECT(ls_trimesh_largest_move(mesh, &moved), LS_OK);
+        EXPECT(ls_trimesh_min_scaled_jacobian(mesh, &jac), LS_OK);
+        CHECK(per == (size_t)(order + 1) * (order + 2) / 2 && ne == nt);
         CHECK(nn > nv && moved >= 0 && moved < 1e-12 && jac > 0 && jac <= 1);
         /* The vertices come first, snapped (here they were on the surface). */
         for (size_t i = 0; i < nv; i++)
@@ -1105,45 +1256,40 @@ static void test_curve(void) {
         for (size_t t = 0; t < nt; t++)
             for (size_t u = t + 1; u < nt; u++)
                 for (int k = 0; k < 3; k++)
-                    for (int m = 0; m < 3; m++) {
+                    for (int q = 0; q < 3; q++) {
                         const int32_t* a = elems + per * t;
                         const int32_t* b = elems + per * u;
-                        if (a[k] != b[(m + 1) % 3] || a[(k + 1) % 3] != b[m]) continue;
+                        if (a[k] != b[(q + 1) % 3] || a[(k + 1) % 3] != b[q]) continue;
                         shared++;
                         for (size_t j = 0; j < inner; j++)
-                            CHECK(a[3 + k * inner + j] == b[3 + m * inner + inner - 1 - j]);
+                            CHECK(a[3 + k * inner + j] == b[3 + q * inner + inner - 1 - j]);
                     }
         CHECK(shared == 3 * nt / 2);
         for (size_t t = 0; t < nt; t++) CHECK(face[t] == 0);
-        free(face);
-        ls_free_array(nodes);
-        ls_free_array(ntri);
-        ls_free_array(nvw);
-        ls_free_array(elems);
+        ls_trimesh_free(mesh);
     }
-    size_t nn = 77;
-    double* nodes = (double*)&SENTINEL;
-    double *nvw = NULL, moved = -1;
-    int32_t *ntri = NULL, *elems = NULL;
-    EXPECT(ls_curve(surface, nv, xyz, nt, tris, 5, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
-           LS_ERR_INVALID_ARGUMENT);
+    ls_trimesh* const untouched = (ls_trimesh*)&SENTINEL;
+    ls_trimesh* mesh = untouched;
+    o.order = 5;
+    EXPECT(ls_mesh_curve(surface, nv, xyz, nt, tris, &o, &mesh), LS_ERR_INVALID_ARGUMENT);
     CHECK(strstr(ls_last_error(), "order") != NULL);
+    o.order = 2;
+    o.max_move = 0;
+    EXPECT(ls_mesh_curve(surface, nv, xyz, nt, tris, &o, &mesh), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "max_move") != NULL);
+    o.max_move = 0.01;
     tris[4] = (int32_t)nv;
-    EXPECT(ls_curve(surface, nv, xyz, nt, tris, 2, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
-           LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_mesh_curve(surface, nv, xyz, nt, tris, &o, &mesh), LS_ERR_INDEX_OUT_OF_RANGE);
     CHECK(strstr(ls_last_error(), "triangle 1") != NULL);
     tris[4] = 0;
     xyz[0] += 10;
-    EXPECT(ls_curve(surface, nv, xyz, nt, tris, 2, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
-           LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_mesh_curve(surface, nv, xyz, nt, tris, NULL, &mesh), LS_ERR_INVALID_ARGUMENT);
     CHECK(strstr(ls_last_error(), "vertex 0") != NULL);
-    EXPECT(ls_curve(NULL, nv, xyz, nt, tris, 2, 0, &nn, &nodes, &ntri, &nvw, &elems, NULL, &moved, NULL),
-           LS_ERR_NULL_POINTER);
-    CHECK(nn == 77 && nodes == (double*)&SENTINEL && moved == -1);
-    ls_free_array(xyz);
-    ls_free_array(tris);
-    ls_free_array(vtri);
-    ls_free_array(vw);
+    EXPECT(ls_mesh_curve(NULL, nv, xyz, nt, tris, &o, &mesh), LS_ERR_NULL_POINTER);
+    EXPECT(ls_mesh_curve(surface, nv, NULL, nt, tris, &o, &mesh), LS_ERR_NULL_POINTER);
+    CHECK(mesh == untouched);
+    free(xyz);
+    free(tris);
     ls_surface_free(surface);
 }
 
@@ -1164,7 +1310,7 @@ int main(int argc, char** argv) {
     test_mesh();
     test_mesh_labels(data_dir);
     test_remesh(data_dir);
-    test_curve();
+    test_mesh_curve();
     test_adapt();
     test_streams();
     const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",

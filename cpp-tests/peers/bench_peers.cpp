@@ -375,18 +375,27 @@ static void remeshing(const std::string& name, const std::string& path, double a
                      hard.size());
 
     // loopsurf: the surface (tagged, built) is ready; only ls_remesh runs
-    // on the clock, and its arrays are freed after.
+    // on the clock, and its mesh is freed after.
     AngleStats loop;
     std::vector<double> loop_t;
+    ls_remesh_options options;
+    ls_remesh_options_default(&options);
+    options.size = h;
+    options.tolerance = 0;
+    options.adapt_curvature = 0;
     for (int r = 0; r < reps; r++) {
-        size_t nv, nt;
-        double *xyz, *vw, deviation;
-        int32_t *tris, *vertex_tri, *tri_face;
+        ls_trimesh* mesh = nullptr;
         auto a = std::chrono::steady_clock::now();
-        if (ls_remesh(n.surface, h, 0, 0, 0, &nv, &xyz, &nt, &tris, &vertex_tri, &vw, &tri_face, &deviation) != LS_OK) fail("ls_remesh");
+        if (ls_remesh(n.surface, &options, &mesh) != LS_OK) fail("ls_remesh");
         loop_t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+        size_t nv, nt, per;
+        const double* xyz;
+        const int32_t* tris;
+        if (ls_trimesh_counts(mesh, &nv, &nt, &per) != LS_OK || ls_trimesh_xyz(mesh, &xyz) != LS_OK ||
+            ls_trimesh_elements(mesh, &tris) != LS_OK)
+            fail("ls_trimesh");
         if (r == 0) loop = angle_stats(std::vector<double>(xyz, xyz + 3 * nv), std::vector<int32_t>(tris, tris + 3 * nt), h);
-        for (void* p : {(void*)xyz, (void*)tris, (void*)vertex_tri, (void*)vw, (void*)tri_face}) ls_free_array(p);
+        ls_trimesh_free(mesh);
     }
 
     char label[96];

@@ -5,59 +5,55 @@
 //! and catches panics at the boundary: nothing unwinds into C and the
 //! library never prints. A `const` handle is never mutated, and a built
 //! surface may be queried from any number of threads at once. Indices are
-//! 0-based. This crate only translates: all geometry lives in `loopsurf`.
+//! 0-based. A call whose options may grow takes an options struct that
+//! starts with `struct_size` and has a `*_default()` function. This crate
+//! only translates: all geometry lives in `loopsurf`. `docs/c-api.md`
+//! writes these conventions down.
 //!
-//! `include/loopsurf.h` is generated from this crate by cbindgen
-//! (`cbindgen.toml`); `tests/header.rs` fails when it is stale and rewrites
-//! it with `LOOPSURF_BLESS=1`.
+//! Each module is one stage of a handle's lifecycle, and
+//! `include/loopsurf.h` has one section per stage, in lifecycle order:
+//! `tests/header.rs` names the sections and their modules, generates the
+//! header with cbindgen section by section, and fails when the committed
+//! copy is stale.
 
 #![allow(non_camel_case_types)]
 // Raw pointers are validated by `status::input`/`output` before use; every
 // exported function documents its pointer contract in the header instead.
 #![allow(clippy::missing_safety_doc)]
 
-mod adapt;
 mod buffers;
-mod curve;
-mod mesh;
-mod model;
-mod net;
-mod project;
-mod snap;
-mod status;
-mod surface;
+mod handles;
 
-pub use buffers::*;
-pub use curve::*;
+pub mod adapt;
+pub mod closest;
+pub mod evaluate;
+pub mod mesh;
+pub mod mesh_curve;
+pub mod mesh_labels;
+pub mod model;
+pub mod net;
+pub mod project;
+pub mod refine;
+pub mod remesh;
+pub mod snap;
+pub mod status;
+pub mod stream;
+pub mod surface;
+pub mod trimesh;
+
+pub use adapt::*;
+pub use closest::*;
+pub use evaluate::*;
 pub use mesh::*;
+pub use mesh_curve::*;
+pub use mesh_labels::*;
+pub use model::*;
 pub use net::*;
 pub use project::*;
+pub use refine::*;
+pub use remesh::*;
 pub use snap::*;
 pub use status::*;
+pub use stream::*;
 pub use surface::*;
-
-/// A control net being prepared: load or build it, tag its hard features,
-/// then freeze it into an `ls_surface`.
-pub struct ls_net(loopsurf::ControlNet);
-
-/// An immutable limit surface, safe to query from many threads at once.
-pub struct ls_surface(loopsurf::Surface);
-
-/// Writes the library version (each pointer may be NULL).
-#[no_mangle]
-pub unsafe extern "C" fn ls_version(
-    major: *mut std::ffi::c_int,
-    minor: *mut std::ffi::c_int,
-    patch: *mut std::ffi::c_int,
-) {
-    let parse = |s: &str| s.parse().unwrap_or(0);
-    for (p, v) in [
-        (major, env!("CARGO_PKG_VERSION_MAJOR")),
-        (minor, env!("CARGO_PKG_VERSION_MINOR")),
-        (patch, env!("CARGO_PKG_VERSION_PATCH")),
-    ] {
-        if !p.is_null() {
-            *p = parse(v);
-        }
-    }
-}
+pub use trimesh::*;

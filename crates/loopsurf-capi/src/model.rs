@@ -1,4 +1,4 @@
-//! The model (DESIGN.md, "The model"): corners, curves and faces of the
+//! The model (docs/design.md, "The model"): corners, curves and faces of the
 //! hard features with stable 0-based ids, and the exact limit curves —
 //! evaluation, arc length, the surface points of a curve point on each
 //! side, local projection and the certified closest point. What a mesh
@@ -8,13 +8,13 @@
 //! parameter t runs over [0, n] for its n control edges, one unit per edge;
 //! at integer t it is the limit point of that chain vertex.
 
-use crate::ls_surface;
+use crate::closest::point;
 use crate::status::{input, output, run, Fail};
 use crate::status::{
     LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_NOT_FINITE, LS_ERR_NULL_POINTER,
     LS_ERR_PARAMETER_OUT_OF_RANGE,
 };
-use crate::surface::point;
+use crate::surface::ls_surface;
 use loopsurf::model::{Curve, Face};
 use loopsurf::{Error, LimitCurve, Surface};
 use std::ffi::c_int;
@@ -70,7 +70,7 @@ fn c_id(id: Option<u32>) -> i32 {
 }
 
 /// Writes the numbers of faces, curves and corners of the model (the hard
-/// features of the surface's net: see DESIGN.md, "The model"); each output
+/// features of the surface's net: see docs/design.md, "The model"); each output
 /// may be NULL. Valid ids are 0 to count − 1, in file order.
 #[no_mangle]
 pub unsafe extern "C" fn ls_model_counts(

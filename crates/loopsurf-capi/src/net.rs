@@ -1,6 +1,6 @@
 //! Control nets: load, build from arrays, tag hard features, free.
 
-use crate::ls_net;
+pub use crate::handles::ls_net;
 use crate::status::{input, input_mut, output, run, run_void, Fail};
 use crate::status::{
     LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INVALID_ARGUMENT, LS_ERR_NOT_FINITE, LS_ERR_NULL_POINTER,

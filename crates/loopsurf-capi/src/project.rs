@@ -2,9 +2,10 @@
 //! mesh generator or smoother has moved a little. Arguments and outputs as
 //! `ls_snap_guess`'s; only the search differs (local, uncertified, fast).
 
-use crate::ls_surface;
+use crate::closest::{point, snap_outputs, write_snap};
+use crate::evaluate::query;
 use crate::status::{input, run};
-use crate::surface::{point, query, snap_outputs, write_snap};
+use crate::surface::ls_surface;
 use std::ffi::c_int;
 
 /// The nearest LOCAL minimum of the distance to `xyz`, by Newton's method

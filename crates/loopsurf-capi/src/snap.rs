@@ -3,9 +3,10 @@
 //! knows). `ls_snap` and `ls_snap_guess` stay as they were, and are
 //! certified too, at the default tolerance.
 
-use crate::ls_surface;
-use crate::status::{input, output, run, Fail, LS_ERR_INVALID_ARGUMENT};
-use crate::surface::point;
+use crate::closest::point;
+use crate::status::LS_ERR_INVALID_ARGUMENT;
+use crate::status::{input, output, read_options, run, write_defaults, Fail, Options};
+use crate::surface::ls_surface;
 use std::ffi::c_int;
 
 /// Options of `ls_snap_certified`: fill with `ls_snap_options_default`,
@@ -40,17 +41,20 @@ pub struct ls_snap_result {
     pub lower_bound: f64,
 }
 
+impl Options for ls_snap_options {
+    const FIRST_SIZE: usize = std::mem::size_of::<ls_snap_options>();
+    fn defaults() -> Self {
+        ls_snap_options {
+            struct_size: std::mem::size_of::<ls_snap_options>(),
+            tolerance: loopsurf::snap::DEFAULT_TOLERANCE,
+        }
+    }
+}
+
 /// Writes the default options (tolerance 1e-12) into `options`.
 #[no_mangle]
 pub unsafe extern "C" fn ls_snap_options_default(options: *mut ls_snap_options) -> c_int {
-    run("ls_snap_options_default", || {
-        let options = output(options, "options")?;
-        *options = ls_snap_options {
-            struct_size: std::mem::size_of::<ls_snap_options>(),
-            tolerance: loopsurf::snap::DEFAULT_TOLERANCE,
-        };
-        Ok(())
-    })
+    write_defaults("ls_snap_options_default", options)
 }
 
 /// The closest point of the limit surface to `xyz` — the global minimum of
@@ -66,13 +70,7 @@ pub unsafe extern "C" fn ls_snap_certified(
     run("ls_snap_certified", || {
         let surface = &input(surface, "surface")?.0;
         let p = point(xyz)?;
-        let tolerance = if options.is_null() {
-            loopsurf::snap::DEFAULT_TOLERANCE
-        } else {
-            let o = &*options;
-            known_size::<ls_snap_options>(o.struct_size, "options")?;
-            o.tolerance
-        };
+        let tolerance = read_options(options, "options")?.tolerance;
         let result = output(result, "result")?;
         known_size::<ls_snap_result>((*result).struct_size, "result")?;
         let s = loopsurf::snap::closest_point_within(surface, p, tolerance)?;

@@ -1,9 +1,10 @@
-//! Status codes, the thread-local error message, and the one wrapper every
+//! Status codes, the thread-local error message, the library version, the
+//! release of arrays handed to the caller, and the one wrapper every
 //! exported function runs its body in (pointer checks, panic catching).
 
 use loopsurf::Error;
 use std::cell::RefCell;
-use std::ffi::{c_char, c_int, CStr, CString};
+use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Success.
@@ -34,6 +35,10 @@ pub const LS_ERR_BAD_STREAM: c_int = -10;
 pub const LS_ERR_INVALID_ARGUMENT: c_int = -11;
 /// A bug in loopsurf (a caught panic); please report the message.
 pub const LS_ERR_INTERNAL: c_int = -12;
+/// The result would pass its triangle budget (`max_triangles` of the
+/// call's options): refused before the memory is spent; the message says
+/// how many triangles the request needs.
+pub const LS_ERR_OVER_BUDGET: c_int = -13;
 
 /// Why a call failed: a status code and the message `ls_last_error` shows.
 pub(crate) struct Fail {
@@ -80,6 +85,7 @@ fn code_of(err: &Error) -> c_int {
         Error::BadParameter { v, w, .. } if !v.is_finite() || !w.is_finite() => LS_ERR_NOT_FINITE,
         Error::BadParameter { .. } => LS_ERR_PARAMETER_OUT_OF_RANGE,
         Error::Stream { .. } => LS_ERR_BAD_STREAM,
+        Error::OverBudget { .. } => LS_ERR_OVER_BUDGET,
         _ => LS_ERR_INVALID_ARGUMENT,
     }
 }
@@ -174,7 +180,82 @@ pub extern "C" fn ls_status_string(status: c_int) -> *const c_char {
         LS_ERR_BAD_STREAM => c"LS_ERR_BAD_STREAM: truncated, damaged or foreign surface stream",
         LS_ERR_INVALID_ARGUMENT => c"LS_ERR_INVALID_ARGUMENT: an argument that makes no sense",
         LS_ERR_INTERNAL => c"LS_ERR_INTERNAL: internal error (a bug; please report)",
+        LS_ERR_OVER_BUDGET => c"LS_ERR_OVER_BUDGET: the result would pass its triangle budget",
         _ => c"unknown loopsurf status code",
     };
     s.as_ptr()
+}
+
+/// Writes the library version (each pointer may be NULL).
+#[no_mangle]
+pub unsafe extern "C" fn ls_version(major: *mut c_int, minor: *mut c_int, patch: *mut c_int) {
+    let parse = |s: &str| s.parse().unwrap_or(0);
+    for (p, v) in [
+        (major, env!("CARGO_PKG_VERSION_MAJOR")),
+        (minor, env!("CARGO_PKG_VERSION_MINOR")),
+        (patch, env!("CARGO_PKG_VERSION_PATCH")),
+    ] {
+        if !p.is_null() {
+            *p = parse(v);
+        }
+    }
+}
+
+/// Frees an array that a function handed to the caller (`ls_refine`,
+/// `ls_refine_origins`, `ls_net_hard_edges`, `ls_net_folds`,
+/// `ls_surface_folded_patches`, `ls_mesh_hard_edges`, ...); NULL is
+/// ignored. The arrays come from `malloc`, so C's `free` releases them
+/// too; this is for languages without the C allocator (Fortran).
+#[no_mangle]
+pub unsafe extern "C" fn ls_free_array(array: *mut c_void) {
+    libc::free(array);
+}
+
+/// An options struct of the C ABI: `struct_size` first, fields only ever
+/// appended, defaults from the matching `*_default()` function.
+pub(crate) trait Options: Copy {
+    /// The options every field of which takes its default.
+    fn defaults() -> Self;
+    /// The size of the struct when this type first shipped: a caller
+    /// compiled against that header passes at least this many bytes.
+    const FIRST_SIZE: usize;
+}
+
+/// Reads a caller's options: NULL gives the defaults; a caller compiled
+/// against an older header (smaller `struct_size`) gets the defaults for
+/// the fields it does not know; a newer one's extra fields are ignored.
+///
+/// # Safety
+/// `p` is NULL or points to at least `struct_size` readable bytes.
+pub(crate) unsafe fn read_options<T: Options>(p: *const T, what: &str) -> Result<T, Fail> {
+    let mut options = T::defaults();
+    if p.is_null() {
+        return Ok(options);
+    }
+    // Only the leading `usize` is read before the size is known good.
+    let size = *(p as *const usize);
+    if size < T::FIRST_SIZE {
+        return Err(Fail::new(
+            LS_ERR_INVALID_ARGUMENT,
+            format!(
+                "{what}: struct_size {size} is smaller than any version of this struct ({} bytes): fill it with its *_default() function",
+                T::FIRST_SIZE
+            ),
+        ));
+    }
+    let known = size.min(std::mem::size_of::<T>());
+    std::ptr::copy_nonoverlapping(p as *const u8, &mut options as *mut T as *mut u8, known);
+    Ok(options)
+}
+
+/// Writes the defaults of an options struct into `out` (the body of every
+/// `*_default()` function).
+///
+/// # Safety
+/// `out` is NULL or points to a writable `T`.
+pub(crate) unsafe fn write_defaults<T: Options>(name: &str, out: *mut T) -> c_int {
+    run(name, || {
+        *output(out, "options")? = T::defaults();
+        Ok(())
+    })
 }

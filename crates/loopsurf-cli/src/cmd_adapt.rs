@@ -1,5 +1,5 @@
-//! `loopsurf adapt`: adaptive Loop subdivision (seed 001), its summary and
-//! the seed's Table 1 for any mesh (`--report`).
+//! `loopsurf adapt`: adaptive Loop subdivision (Liu & Kondo), its summary and
+//! Liu & Kondo's Table 1 for any mesh (`--report`).
 
 use crate::input::Input;
 use loopsurf::io::{self, DataArray};
@@ -35,7 +35,7 @@ pub struct Args {
     /// surface (a snap per vertex).
     #[arg(long)]
     no_verify: bool,
-    /// Print the seed's Table 1 for this mesh: triangles per level for
+    /// Print Liu & Kondo's Table 1 for this mesh: triangles per level for
     /// uniform and CA 7°, 11°, 22° (and --angle), reductions, minimum
     /// angle and distance to the limit surface.
     #[arg(long)]
@@ -176,7 +176,7 @@ fn summary(
     }
 }
 
-/// The seed's Table 1: triangles per level, reductions against uniform,
+/// Liu & Kondo's Table 1: triangles per level, reductions against uniform,
 /// and the last level's minimum angle and distance to the surface.
 fn table(out: &mut dyn Write, net: &ControlNet, runs: &[(f64, Run)]) -> std::io::Result<()> {
     let levels = runs[0].1.mesh.counts.len() - 1;

@@ -1,5 +1,5 @@
 //! `loopsurf info`: what the control net is made of, and how far its
-//! vertices lie from the limit surface (the paper's deviation figure).
+//! vertices lie from the limit surface (Persson, Aftosmis & Haines's deviation figure).
 
 use crate::input::Input;
 use loopsurf::{ControlNet, Error, VertexKind};

@@ -1,4 +1,4 @@
-//! `loopsurf topology`: the model of the net's hard features (DESIGN.md,
+//! `loopsurf topology`: the model of the net's hard features (docs/design.md,
 //! "The model") as text, and optionally as a .vtu of the control net
 //! labelled with it.
 //!

@@ -34,7 +34,7 @@ enum Command {
     HardEdges(cmd_hard_edges::Args),
     /// Uniform Loop refinement; the output format follows OUT's extension.
     Refine(cmd_refine::Args),
-    /// Adaptive Loop subdivision by conical angle (seed 001) or distance to the limit surface; conforming.
+    /// Adaptive Loop subdivision by conical angle (Liu & Kondo) or distance to the limit surface; conforming.
     Adapt(cmd_adapt::Args),
     /// Exact evaluation: reads `tri v w` lines on stdin, writes X Xv Xw Xvv Xvw Xww (18 numbers) per line;
     /// with --edge, `edge t` lines and X X' X'' (9 numbers) of that model edge (curve).

@@ -1,4 +1,4 @@
-//! The build at scale (issue 20): reads a control net, builds its surface,
+//! The build at scale (docs/benchmarks.md): reads a control net, builds its surface,
 //! evaluates once in every triangle (which makes every patch), then answers
 //! a first snap (which builds the snap index), and prints the times and
 //! the bytes held per control triangle. `scripts/scale.sh` runs

@@ -194,3 +194,24 @@ pub enum Element {
     Vertex(usize),
     Triangle(usize),
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A wrapped error keeps its kind, and says both where and what.
+    #[test]
+    fn during_keeps_the_kind() {
+        let inner = Error::OverBudget {
+            needed: 2e6,
+            limit: 1000,
+            message: "the requested density needs about 2e6 triangles".into(),
+        };
+        let err = inner.during("the start mesh").in_file("a.off", Some(3));
+        assert!(matches!(err.root(), Error::OverBudget { limit: 1000, .. }));
+        assert_eq!(
+            err.to_string(),
+            "a.off:3: the start mesh: the requested density needs about 2e6 triangles"
+        );
+    }
+}

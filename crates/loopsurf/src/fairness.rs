@@ -1,4 +1,4 @@
-//! How far the interpolating surface (seed 000 §3.3, [`crate::interpolate`])
+//! How far the interpolating surface (Persson, Aftosmis & Haines §3.3, [`crate::interpolate`])
 //! departs from the approximating one: the residual of the solve, how far
 //! control points moved, and how much normals turned. It compares two
 //! built surfaces, so it sits above [`crate::surface`].

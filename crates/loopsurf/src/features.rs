@@ -1,5 +1,5 @@
 //! Hard features: which edges are creases and which vertices are corners,
-//! and the resulting kind of every vertex (DESIGN.md, "Hard features").
+//! and the resulting kind of every vertex (docs/design.md, "Subdivision rules").
 //!
 //! Boundary edges are always hard. A vertex's kind follows from the number
 //! of hard edges at it: none → smooth, one → dart (smooth rule), two →
@@ -196,7 +196,7 @@ impl Features {
     }
 }
 
-/// DESIGN.md's classification from a vertex's tag, number of edges and
+/// The classification (docs/design.md) from a vertex's tag, number of edges and
 /// number of hard edges.
 pub(crate) fn classify(tagged: bool, degree: u32, hard: u32) -> VertexKind {
     if tagged || degree == 0 {

@@ -1,4 +1,4 @@
-//! Interpolating surfaces (seed 000 §3.3): the Loop surface through the
+//! Interpolating surfaces (Persson, Aftosmis & Haines §3.3): the Loop surface through the
 //! original points.
 //!
 //! [`solve`] finds control points x′ with S∞ x′ = x, where S∞ is the limit
@@ -13,7 +13,7 @@
 //! brings the residual down to round-off.
 //!
 //! The solved net can wiggle where the original one is irregular — the
-//! paper's Figs. 9–10 show cusps — so [`crate::fairness`] measures it.
+//! Persson, Aftosmis & Haines's Figs. 9–10 show cusps — so [`crate::fairness`] measures it.
 //! This module works on nets only, below [`crate::surface`], whose `Solve`
 //! mode calls [`solve`].
 

@@ -30,9 +30,12 @@
 //!    after Liu and Kondo) and [`fairness`] (how far the interpolating
 //!    surface departs from the approximating one).
 //!
-//! What a module above the surface derives from it once (the snap index,
-//! the curves' lengths) the surface keeps for it through a trait, without
-//! knowing what it is: the surface's file names nothing above it.
+//! No module adds methods to another module's type (checked too), so a
+//! type's methods are all in its own module and a module's uses show in
+//! its paths: a closest point is `snap::closest_point(&surface, p)`, a
+//! curve `LimitCurve::new(&surface, c)?`. What a module above the surface
+//! derives from it once (the snap index, the curves' lengths) the surface
+//! keeps for it through a trait, without knowing what it is.
 
 pub mod adapt;
 pub mod curve;

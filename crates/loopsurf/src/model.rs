@@ -1,5 +1,5 @@
 //! The BRep view of a control net for mesh generators: corners, curves and
-//! faces, named by stable 0-based ids (DESIGN.md, "The model").
+//! faces, named by stable 0-based ids (docs/design.md, "The model").
 //!
 //! - **Corners** are the vertices the crease rules fix or end at: tagged
 //!   vertices and vertices with other than two hard edges (so boundary

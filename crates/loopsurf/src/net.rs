@@ -79,7 +79,7 @@ impl ControlNet {
         Self::from_indices(points, &wide)
     }
 
-    /// Validates everything DESIGN.md requires of a control net, in order:
+    /// Validates everything loopsurf requires of a control net, in order:
     /// sizes, indices, coordinates, areas, then manifoldness and orientation.
     pub fn from_indices(points: Vec<DVec3>, tris: &[[i64; 3]]) -> Result<ControlNet> {
         Ok(Self::validate(points, tris, false)?.0)
@@ -355,7 +355,7 @@ pub(crate) fn limit_mask_entries(topo: &Topology, features: &Features) -> Vec<(u
 /// Limit tangents at a control vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Tangents {
-    /// Smooth or dart vertex: two tangents (seed 000 eq. 4); t₁ × t₂ is the
+    /// Smooth or dart vertex: two tangents (Persson, Aftosmis & Haines eq. 4); t₁ × t₂ is the
     /// outward normal direction.
     Surface(DVec3, DVec3),
     /// Crease vertex: the tangent of the crease curve, from one crease

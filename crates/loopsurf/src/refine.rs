@@ -2,7 +2,7 @@
 //! the masks of [`crate::rules`], hard edges and corners carried along, and
 //! for every refined vertex the control triangle and (v, w) it sits at.
 //!
-//! Together with the limit masks this is DESIGN.md's exact dyadic
+//! Together with the limit masks this is the exact dyadic
 //! reference: the limit position of a vertex of level k *is* the surface at
 //! its dyadic parameter (i/2ᵏ, j/2ᵏ).
 

@@ -2,7 +2,7 @@
 //!
 //! These are pure weights: they know nothing of meshes. Callers gather the
 //! neighbour positions a mask needs and apply the weights. The rules are
-//! those of DESIGN.md ("Hard features"), which equal OpenSubdiv's Sdc rules
+//! those of docs/design.md ("Subdivision rules"), which equal OpenSubdiv's Sdc rules
 //! for Loop with `VTX_BOUNDARY_EDGE_ONLY` and infinitely sharp creases:
 //!
 //! * smooth and dart vertices: Loop's original β(n);
@@ -137,7 +137,7 @@ pub fn dart_limit_weights(valence: usize) -> (f64, Vec<f64>) {
     (vertex, ring)
 }
 
-/// Weights of the two limit tangent masks of a smooth vertex (seed 000
+/// Weights of the two limit tangent masks of a smooth vertex (Persson, Aftosmis & Haines
 /// eq. 4): t₁ = Σ cos(2πi/n) xᵢ, t₂ = Σ sin(2πi/n) xᵢ over the neighbours in
 /// counter-clockwise order. The vertex itself has weight 0 in both. Their
 /// cross product t₁ × t₂ points along the outward normal.

@@ -1,7 +1,7 @@
 //! The limit surface as a CAD kernel sees it: points, derivatives, normals
 //! and curvature at any (triangle, v, w), exactly and in constant time.
 //!
-//! Parameterisation (DESIGN.md): triangle t = (c0, c1, c2) of the control
+//! Parameterisation (docs/design.md): triangle t = (c0, c1, c2) of the control
 //! net, weights (1 − v − w, v, w); derivatives are with respect to v and w.
 //! A built surface is immutable, `Send` and `Sync`.
 
@@ -51,7 +51,7 @@ pub(crate) trait Derived: std::any::Any + Send + Sync {
     fn memory_bytes(&self) -> usize;
 }
 
-/// Which surface a control net defines (seed 000 §3.3).
+/// Which surface a control net defines (Persson, Aftosmis & Haines §3.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SurfaceMode {
     /// The Loop limit surface: smooth, near but not through the net's points.
@@ -68,7 +68,7 @@ pub enum SurfaceMode {
     Displacement,
 }
 
-/// Position and derivatives at one point, in DESIGN.md's record order.
+/// Position and derivatives at one point, in the evaluation record's order (docs/design.md).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Evaluation {
     pub x: DVec3,

@@ -1,4 +1,4 @@
-//! Adaptive subdivision (seed 001) against what it promises: uniform Loop
+//! Adaptive subdivision (Liu & Kondo) against what it promises: uniform Loop
 //! exactly at angle 0, conforming and watertight at every angle and level,
 //! dead triangles kept, hard edges kept as chains, the tolerance honoured,
 //! and clear errors for bad values.

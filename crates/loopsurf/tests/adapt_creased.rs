@@ -1,7 +1,7 @@
-//! Adaptive subdivision of nets with many hard edges (issue 19, item 3).
+//! Adaptive subdivision of nets with many hard edges.
 //!
 //! Tagging by angle cuts a legacy mesh's fans into sectors, many of them a
-//! single triangle, and the seed's conical angle compares normals within a
+//! single triangle, and Liu & Kondo's conical angle compares normals within a
 //! sector only: a one-triangle sector measured nothing, so curved regions
 //! under many tags died at level 1 and stayed the flat control triangles.
 //! The conical angle at hard edges now also takes each fan triangle's
@@ -128,7 +128,7 @@ fn densely_tagged_nets_refine_where_the_limit_bends() {
     }
 }
 
-/// The issue's own case: joint.off at `--hard-angle 30 --angle 11` died
+/// The case that showed it: joint.off at `--hard-angle 30 --angle 11` died
 /// whole at level 1. Triangle 385 (140, 98, 97) is alone in its sector at
 /// corner 98 and its limit bends 11.7° across it, while the normals
 /// compared at its other corners spread only 9°: it must be split. Most of
@@ -193,7 +193,7 @@ fn the_limit_surface_given_or_built_gives_one_mesh() {
     assert!(built.net.triangles().len() > 4 * net.triangles().len());
 }
 
-/// Nets without hard edges keep the seed's rule: a limit surface changes
+/// Nets without hard edges keep Liu & Kondo's rule: a limit surface changes
 /// nothing, bit for bit.
 #[test]
 fn nets_without_hard_edges_are_untouched() {

@@ -1,4 +1,4 @@
-//! The model's curves (issue 16): exact evaluation against the surface on
+//! The model's curves: exact evaluation against the surface on
 //! both sides and against dyadic refinement (no shared code: refinement
 //! applies the subdivision rules to the whole net), arc length, projection.
 

@@ -1,4 +1,4 @@
-//! Performance work on the evaluator (issue 20) must not change a single
+//! Performance work on the evaluator must not change a single
 //! bit of what it returns: 300 000 evaluations per mesh at seeded random
 //! points (one in ten within 1e-9 of a corner, next to the special
 //! vertices), their 18-number records folded into a hash, against the

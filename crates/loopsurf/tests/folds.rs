@@ -1,6 +1,6 @@
 //! Folds of the geometry (`folds::folded_edges`, `folds::folded_patches`)
 //! against an independent reference: the facets of the dyadic refinement
-//! (DESIGN.md), whose vertices are pushed to the limit by their limit
+//! (docs/design.md), whose vertices are pushed to the limit by their limit
 //! masks, with no evaluation of the patches involved.
 
 mod common;

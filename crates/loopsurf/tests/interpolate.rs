@@ -176,9 +176,9 @@ fn fairness_report_flags_a_wiggly_net_and_not_a_smooth_one() {
         eprintln!("{name}: {report:?}");
         assert!(report.warnings().is_empty(), "{name}: {report:?}");
     }
-    // Coarse or irregular real nets may fold (the paper's Fig. 10): the
+    // Coarse or irregular real nets may fold (Persson, Aftosmis & Haines's Fig. 10): the
     // report's largest move is recomputed here from the two nets, and the
-    // nets the README names as folding (cow 69°, Viking 117°) are flagged.
+    // nets docs/interpolation.md names as folding (cow 69°, Viking 117°) are flagged.
     for (name, net) in meshes() {
         let solved = solve(&net).unwrap();
         let report = fairness(&net, &solved).unwrap();

@@ -8,7 +8,10 @@
 //! (`crate::Surface` is `surface`'s) — and fails on a path to a module named
 //! later, or on a module the list leaves out, naming the file and line.
 //! Inside a module, its sub-modules must not use each other in a cycle
-//! either.
+//! either. And no module adds methods to another module's type (an `impl
+//! Surface` block outside `surface`): such a block needs no path to the
+//! module above, so it would hide who depends on whom, and scatter a
+//! type's public face over the files of its users.
 //!
 //! Comments, strings and unit tests (`#[cfg(test)]`) are left out: a
 //! comment may point anywhere, and a unit test may check its module with
@@ -114,6 +117,30 @@ fn a_module_left_out_of_the_list_is_caught() {
     let (found, _) = check(&sources);
     assert!(
         found.len() == 1 && found[0].contains("`hidden` is missing from the layer list"),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn a_method_added_to_another_module_s_type_is_caught() {
+    let lib = "//! Layering: [`a`] then [`b`].\n//!\npub mod a;\npub mod b;\n";
+    let sources = [
+        source("lib.rs", lib),
+        source(
+            "a.rs",
+            "pub struct Thing<'x>(&'x str);\nimpl<'x> Thing<'x> {}\n",
+        ),
+        source(
+            "b.rs",
+            "use crate::a::Thing;\nstruct Own;\nimpl Own {}\n\
+             impl std::fmt::Debug for Own {\n    fn fmt(&self) -> impl Sized {}\n}\n\
+             impl<'x> crate::a::Thing<'x> {\n    fn more(&self) {}\n}\n",
+        ),
+    ];
+    let (found, _) = check(&sources);
+    assert!(
+        found.len() == 1
+            && found[0].starts_with("src/b.rs:7: `b` adds methods to `Thing`, a type of `a`"),
         "{found:?}"
     );
 }
@@ -292,8 +319,129 @@ fn check(sources: &[Source]) -> (Vec<String>, BTreeSet<(String, String)>) {
             ));
         }
     }
+    found.extend(foreign_impls(&code, &test_only_file));
     found.dedup();
     (found, uses)
+}
+
+/// Inherent `impl` blocks of a type that another top-level module defines
+/// (and the block's own module does not), with file and line.
+fn foreign_impls(
+    code: &BTreeMap<&str, (Vec<String>, String)>,
+    test_only_file: &dyn Fn(&[String]) -> bool,
+) -> Vec<String> {
+    let library = || code.iter().filter(|(_, (m, _))| !test_only_file(m));
+    let mut defined: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (_, (module, text)) in library() {
+        for keyword in ["struct", "enum", "union"] {
+            for (_, name) in words_after(text, keyword) {
+                defined.entry(name).or_default().insert(module[0].clone());
+            }
+        }
+    }
+    let mut found = Vec::new();
+    for (path, (module, text)) in library() {
+        let top = &module[0];
+        for (at, header) in impl_headers(text) {
+            let inherent = !header.split_whitespace().any(|w| w == "for");
+            let Some(name) = header
+                .split(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':'))
+                .rfind(|w| !w.is_empty() && !w.starts_with('\''))
+                .and_then(|w| w.rsplit("::").next())
+            else {
+                continue;
+            };
+            let owners = defined.get(name);
+            if inherent
+                && owners.is_some_and(|o| !o.contains(top))
+                && owners.is_some_and(|o| !o.is_empty())
+            {
+                let line = text[..at].matches('\n').count() + 1;
+                let owners: Vec<String> =
+                    owners.unwrap().iter().map(|o| format!("`{o}`")).collect();
+                found.push(format!(
+                    "src/{path}:{line}: `{top}` adds methods to `{name}`, a type of {}: \
+                     a type's methods belong in its own module",
+                    owners.join(", ")
+                ));
+            }
+        }
+    }
+    found
+}
+
+/// Each `keyword name` in `code` (whole words): where, and the name.
+fn words_after(code: &str, keyword: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut from = 0;
+    while let Some(k) = code[from..].find(keyword) {
+        let at = from + k;
+        from = at + keyword.len();
+        let before = code[..at].chars().next_back();
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue;
+        }
+        let rest = &code[from..];
+        if !rest.starts_with(char::is_whitespace) {
+            continue;
+        }
+        let name: String = rest
+            .trim_start()
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        if !name.is_empty() {
+            out.push((at, name));
+        }
+    }
+    out
+}
+
+/// Each item-level `impl` in `code`: where, and its header up to the `{`
+/// with generic parameters and arguments left out (`impl<'s> A<'s> for B`
+/// gives "A for B"). An `impl Trait` in a type (after `->`, `(`, `:` …)
+/// is not an item and is skipped.
+fn impl_headers(code: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    for (at, _) in words_after(code, "impl")
+        .into_iter()
+        .chain(impl_with_generics(code))
+    {
+        let before = code[..at].trim_end().chars().next_back();
+        if !matches!(before, None | Some('}' | ';' | '{' | ']')) {
+            continue;
+        }
+        let rest = &code[at + "impl".len()..];
+        let mut header = String::new();
+        let mut depth = 0;
+        for c in rest.chars() {
+            match c {
+                '<' => depth += 1,
+                '>' => depth -= 1,
+                '{' if depth == 0 => break,
+                _ if depth == 0 => header.push(c),
+                _ => {}
+            }
+        }
+        let header = header.split(" where ").next().unwrap_or_default();
+        out.push((at, header.trim().to_string()));
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// Each `impl<` in `code` (which `words_after` misses: no space).
+fn impl_with_generics(code: &str) -> Vec<(usize, String)> {
+    code.match_indices("impl<")
+        .filter(|(at, _)| {
+            !code[..*at]
+                .chars()
+                .next_back()
+                .is_some_and(|c| c.is_alphanumeric() || c == '_')
+        })
+        .map(|(at, _)| (at, String::new()))
+        .collect()
 }
 
 /// The modules in the order of the layer list: the backquoted names in the

@@ -1,4 +1,4 @@
-//! The BRep model of the hard features (issue 16): corners, curves and
+//! The BRep model of the hard features: corners, curves and
 //! faces on the built-in examples and CGAL's fandisk, and the invariants
 //! every model keeps.
 

@@ -1,4 +1,4 @@
-//! The quality remesher (issue 17) on the issue's three cases: the quality
+//! The quality remesher on its three benchmark cases (docs/remesher.md): the quality
 //! goals measured against CGAL's figures, and the invariants checked with
 //! references that share no code with it — the certified snap for the
 //! surface and the faces, the certified curve projection for the creases.
@@ -16,7 +16,7 @@ fn cgal(name: &str, angle: f64) -> Option<ControlNet> {
     Some(net)
 }
 
-/// The issue's cases: net, relative size, and CGAL 5.5's isotropic
+/// The three cases: net, relative size, and CGAL 5.5's isotropic
 /// remeshing at that size (3 iterations, sharp edges constrained),
 /// measured on 2026-11-28: triangles and smallest angle.
 fn cases() -> Vec<(&'static str, ControlNet, f64, usize, f64)> {
@@ -272,7 +272,7 @@ fn quality_beats_cgal_at_the_same_size() {
             unforced == 0,
             "{name}: {unforced} triangles below 20° away from features"
         );
-        // The issue's goal.
+        // The goal.
         assert!(
             q.mean_min_angle >= 50.0,
             "{name}: mean-min {}",
@@ -347,11 +347,11 @@ fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
         );
         if name != "pig (40°)" {
             check_orientation_and_faces(name, &surface, &mesh, 1);
-            // The issue's goals: nothing below 20°.
+            // The goals: nothing below 20°.
             assert!(q.min_angle >= 20.0, "{name}: min angle {}", q.min_angle);
             continue;
         }
-        // Not met on pig with its 40° creases (issue 17 stays open). Its
+        // Not met on pig with its 40° creases (a known failure, docs/remesher.md). Its
         // net folds back at triangle 534 (see `next_to_folds`), and its
         // creases end inside its one face (the tail's, beside triangles
         // 548 and 565, bend by up to 90°): the caps and the triangles
@@ -413,7 +413,12 @@ fn densities_over_the_budget_fail_with_the_count() {
         .size(0.025)
         .max_triangles(1_000)
         .run();
-    let message = uniform.unwrap_err().to_string();
+    let err = uniform.unwrap_err();
+    assert!(
+        matches!(err, loopsurf::Error::OverBudget { limit: 1_000, needed, .. } if needed > 1_000.0),
+        "{err:?}"
+    );
+    let message = err.to_string();
     assert!(message.contains("budget of 1000"), "{message}");
     // The unit cube's net has area 6 (its limit surface a bit less): at
     // h = 0.025 (aimed at 1.07 h, with 1.2 for edges coming out shorter
@@ -450,6 +455,17 @@ fn densities_over_the_budget_fail_with_the_count() {
     assert!(
         message.contains("starts from (allowed 4 × the budget of 5000"),
         "{message}"
+    );
+    // Said where it happened, yet still a budget error: callers (and the C
+    // ABI's LS_ERR_OVER_BUDGET) match on the kind.
+    let err = Remesher::new(&surface)
+        .tolerance(1e-4)
+        .max_triangles(5_000)
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(err.root(), loopsurf::Error::OverBudget { limit: 20_000, .. }),
+        "{err:?}"
     );
 }
 

@@ -1,4 +1,4 @@
-//! The explicit repairs of dirty files (issue 19): each fixes what it names,
+//! The explicit repairs of dirty files (docs/repairs.md): each fixes what it names,
 //! reports it, and leaves a net the evaluator takes; without it the file is
 //! refused with a message naming the option.
 

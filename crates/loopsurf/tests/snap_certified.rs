@@ -141,7 +141,7 @@ fn cgal(name: &str, angle: Option<f64>) -> Option<ControlNet> {
     Some(net)
 }
 
-/// The shark point from the issue: the old search stopped at (0, 1) of
+/// A point next to the shark's hard edges: an earlier search stopped at (0, 1) of
 /// triangle 6027, 1.988e-3 away, while the surface passes within 4.07e-4.
 #[test]
 fn shark_reproduction() {

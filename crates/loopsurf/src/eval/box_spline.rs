@@ -1,14 +1,14 @@
-//! The quartic box spline of a regular Loop patch (seed 000, eqs. 5–8):
+//! The quartic box spline of a regular Loop patch (Persson, Aftosmis & Haines, eqs. 5–8):
 //! twelve basis functions of (v, w) and their first and second derivatives.
 //!
-//! The control points are numbered as in the seed's Fig. 6: the corners
+//! The control points are numbered as in their Fig. 6: the corners
 //! c0 c1 c2 (at (v, w) = (0,0), (1,0), (0,1)), then the outer ring
 //! counter-clockwise: x4 across c1–c2, x5 x6 around c2, x7 across c2–c0,
 //! x8 x9 around c0, x10 across c0–c1, x11 x12 around c1.
 
 use glam::DVec3;
 
-/// Seed 000 eq. (6), times 12: row i holds the coefficients of control point
+/// Persson, Aftosmis & Haines's eq. (6), times 12: row i holds the coefficients of control point
 /// i on the monomials of eq. (5).
 #[rustfmt::skip]
 const PHI: [[f64; 15]; 12] = [
@@ -229,7 +229,7 @@ fn monomials(v: f64, w: f64) -> [[f64; 15]; 6] {
 }
 
 /// Weights of the twelve control points for X, Xv, Xw, Xvv, Xvw, Xww at
-/// (v, w), in DESIGN.md's evaluation-record order.
+/// (v, w), in the evaluation record's order (docs/design.md).
 #[cfg(test)]
 pub fn weights(v: f64, w: f64) -> [[f64; 12]; 6] {
     let mut out = [[0.0; 12]; 6];

@@ -39,7 +39,7 @@ impl Source {
     }
 }
 
-/// The control points of triangle t in seed 000's Fig. 6 order, or `None`
+/// The control points of triangle t in Persson, Aftosmis & Haines's Fig. 6 order, or `None`
 /// when t is not regular.
 pub fn stencil(
     topo: &Topology,

@@ -5,7 +5,7 @@
 //! 6), a torus (all valence 6, so every triangle is a regular box-spline
 //! patch), a cube (90° hard edges and corners), a tetrahedron (valence 3, the
 //! non-diagonalizable case), an open disk (a boundary) and the Viking
-//! aeroshell of seed 000 §4 (two circles of dihedral-angle hard edges).
+//! aeroshell of Persson, Aftosmis & Haines §4 (two circles of dihedral-angle hard edges).
 //!
 //! Every net is a manifold triangulation with consistently counter-clockwise
 //! (outward-normal) triangles, no zero-area triangle and no duplicate

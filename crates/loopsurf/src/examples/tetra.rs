@@ -1,5 +1,5 @@
 //! Regular tetrahedron: every vertex has valence 3, the case whose local
-//! subdivision matrix is not diagonalizable (DESIGN.md, "Exactness"), so
+//! subdivision matrix is not diagonalizable (docs/design.md, what "exact" means), so
 //! evaluators need it as a test case.
 
 use super::Example;

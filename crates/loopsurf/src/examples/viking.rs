@@ -1,4 +1,4 @@
-//! Viking-type Mars entry aeroshell, the legacy-geometry example of seed 000
+//! Viking-type Mars entry aeroshell, the legacy-geometry example of Persson, Aftosmis & Haines
 //! §4: a surface of revolution whose control net has exactly two circles of
 //! edges that a 30° dihedral-angle criterion marks hard.
 

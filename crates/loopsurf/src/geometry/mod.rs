@@ -1,6 +1,7 @@
 //! Plain triangle geometry shared by the readers, validation, the mesher
-//! and adaptive subdivision: measures of one triangle of points, and edge
-//! swapping in a parameter domain. Nothing here knows about subdivision.
+//! and adaptive subdivision: measures of one triangle of points (normals,
+//! area, angles), edge swapping in a parameter domain, and the crate's
+//! absent index. Nothing here knows about subdivision.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -17,10 +18,10 @@ pub const NONE: u32 = u32::MAX;
 /// The area-weighted normal of triangle (a, b, c): (b − a) × (c − a),
 /// whose length is twice the area. It points to the side from which the
 /// corners run counter-clockwise (the right-hand rule), so on a
-/// consistently oriented closed net it points outward. Sums of it over a
-/// fan weight each triangle by its area without a square root. A
-/// degenerate triangle gives a vector at round-off level (zero when two
-/// corners coincide).
+/// consistently oriented closed net it points outward. Left unnormalised
+/// it serves sign tests and angles without a square root, and without
+/// failing on a small triangle. A degenerate triangle gives a vector at
+/// round-off level (zero when two corners coincide).
 pub fn area_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
     (b - a).cross(c - a)
 }

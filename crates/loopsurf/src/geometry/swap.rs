@@ -1,4 +1,4 @@
-//! Max–min angle edge swaps (seed 000 §4) inside one control triangle.
+//! Max–min angle edge swaps (Persson, Aftosmis & Haines §4) inside one control triangle.
 //!
 //! Only edges with a triangle on both sides inside the same control
 //! triangle are swapped, so control edges (hard or not) stay fixed and every

@@ -1,4 +1,4 @@
-//! Model labels of a mesh on the surface (DESIGN.md, "The model"): the face
+//! Model labels of a mesh on the surface (docs/design.md, "The model"): the face
 //! of every triangle, and the curve of every output edge that runs along a
 //! hard control edge, with the curve parameters of its ends.
 //!

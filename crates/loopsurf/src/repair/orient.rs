@@ -7,7 +7,7 @@
 //! Möbius band) and is refused. A consistent piece is left alone, even if
 //! it faces inward: only broken orientation is repaired. A piece that had
 //! to be fixed is oriented outward when it is closed (positive enclosed
-//! volume, the convention of DESIGN.md), else as most of its triangles were.
+//! volume, the convention of docs/design.md), else as most of its triangles were.
 
 use super::{edge_incidences, Repair};
 use crate::error::{Error, Result};

@@ -5,7 +5,7 @@
 //!
 //! Why the containers hold: every Loop mask has non-negative weights summing
 //! to one, so a patch lies in the convex hull of its support (the control
-//! points of its corners' one-rings, seed 000 §2); after one more step the
+//! points of its corners' one-rings, Persson, Aftosmis & Haines §2); after one more step the
 //! same holds for each of its four children, after two for each of its
 //! sixteen grandchildren. So the piece of a triangle of the net refined
 //! `deep` times lies in the hull of the twice-refined points around its

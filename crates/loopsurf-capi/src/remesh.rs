@@ -1,0 +1,120 @@
+//! `ls_remesh`: the quality remesher through the C ABI.
+
+use crate::mesh::{budget, flag};
+use crate::status::LS_ERR_INVALID_ARGUMENT;
+use crate::status::{input, output, read_options, run, write_defaults, Fail, Options};
+use crate::surface::ls_surface;
+use crate::trimesh::{c_ints, ls_trimesh};
+use loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE;
+use loopsurf::remesh::{DEFAULT_GRADATION, DEFAULT_MAX_TRIANGLES};
+use loopsurf::Remesher;
+use std::ffi::c_int;
+
+/// Options of `ls_remesh`: fill with `ls_remesh_options_default`, then
+/// change what you need. Give a size, a tolerance, or both.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct ls_remesh_options {
+    /// `sizeof(ls_remesh_options)` as the caller was compiled with.
+    pub struct_size: usize,
+    /// Target edge length in model units (> 0), the cap when adapting; or
+    /// 0 for none. Default 0.
+    pub size: f64,
+    /// Chord error bound relative to the bounding-box diagonal, in (0, 1),
+    /// or 0 for none: it is measured after meshing and the sizes shrink
+    /// where it is exceeded, a few rounds at most. Any tolerance sizes the
+    /// edges from the exact principal curvatures. Default 1e-3.
+    pub tolerance: f64,
+    /// 1: sizes from the exact principal curvatures under the tolerance
+    /// (1e-3 when none), capped by `size` when given; 0: `size` everywhere
+    /// unless a tolerance is given. Default 1.
+    pub adapt_curvature: c_int,
+    /// The largest ratio of neighbouring sizes per edge when adapting
+    /// (> 1). Default 1.3.
+    pub gradation: f64,
+    /// The most triangles the mesh may have (≥ 1); a density asking for
+    /// more fails with LS_ERR_OVER_BUDGET, and `ls_last_error` says how
+    /// many it asked for, before the memory is spent. Default 20 million
+    /// (about 8 GB while remeshing).
+    pub max_triangles: usize,
+}
+
+impl Options for ls_remesh_options {
+    const FIRST_SIZE: usize = std::mem::size_of::<ls_remesh_options>();
+    fn defaults() -> Self {
+        ls_remesh_options {
+            struct_size: std::mem::size_of::<ls_remesh_options>(),
+            size: 0.0,
+            tolerance: DEFAULT_ADAPT_TOLERANCE,
+            adapt_curvature: 1,
+            gradation: DEFAULT_GRADATION,
+            max_triangles: DEFAULT_MAX_TRIANGLES,
+        }
+    }
+}
+
+/// Writes the default options of `ls_remesh` into `options`.
+#[no_mangle]
+pub unsafe extern "C" fn ls_remesh_options_default(options: *mut ls_remesh_options) -> c_int {
+    write_defaults("ls_remesh_options_default", options)
+}
+
+/// The quality remesher (the default of `loopsurf mesh`): near-equilateral
+/// triangles on the limit surface, free across control triangles, so their
+/// shapes do not copy the net's. Every node is the surface at its (tri,
+/// v, w), corners stay, crease and boundary nodes lie on their exact
+/// curves with chains of edges along them, and every triangle lies in one
+/// model face. `options` may be NULL for the defaults.
+///
+/// On success `*mesh` is a new `ls_trimesh` of straight triangles with
+/// node parameters, element faces and, under a tolerance, the measured
+/// deviation (no element charts: a triangle may span several control
+/// triangles); release it with `ls_trimesh_free`. `ls_mesh_hard_edges`
+/// gives its edges along the curves.
+#[no_mangle]
+pub unsafe extern "C" fn ls_remesh(
+    surface: *const ls_surface,
+    options: *const ls_remesh_options,
+    mesh: *mut *mut ls_trimesh,
+) -> c_int {
+    run("ls_remesh", || {
+        let surface = &input(surface, "surface")?.0;
+        let o = read_options(options, "options")?;
+        let out = output(mesh, "mesh")?;
+        let bad = |m: String| Err(Fail::new(LS_ERR_INVALID_ARGUMENT, m));
+        if !(o.size.is_finite() && o.size >= 0.0) {
+            return bad(format!(
+                "size = {}: must be positive, or 0 for none",
+                o.size
+            ));
+        }
+        if !(0.0..1.0).contains(&o.tolerance) {
+            return bad(format!(
+                "tolerance = {}: must lie in (0, 1), or be 0 for none",
+                o.tolerance
+            ));
+        }
+        if !(o.gradation.is_finite() && o.gradation > 1.0) {
+            return bad(format!(
+                "gradation = {}: must be greater than 1",
+                o.gradation
+            ));
+        }
+        let mut remesher = Remesher::new(surface)
+            .adapt_curvature(flag(o.adapt_curvature, "adapt_curvature")?)
+            .gradation(o.gradation)
+            .max_triangles(budget(o.max_triangles)?);
+        if o.size != 0.0 {
+            remesher = remesher.size(o.size);
+        }
+        if o.tolerance != 0.0 {
+            remesher = remesher.tolerance(o.tolerance);
+        }
+        let made = remesher.run()?;
+        let mut result = ls_trimesh::straight(&made.points, &made.triangles, &made.params)?;
+        result.element_face = Some(c_ints(&made.faces));
+        result.deviation = made.deviation.map(|d| d / made.diagonal);
+        result.hand_over(out);
+        Ok(())
+    })
+}
