@@ -5,7 +5,7 @@
 
 use super::pattern::Pattern;
 use super::{boundary_source, EdgeCut, Source, SurfaceMesh, TriangleCut};
-use crate::refine::SurfacePoint;
+use crate::parameters::SurfacePoint;
 use crate::surface::Surface;
 use crate::topology::NONE;
 use glam::DVec3;

@@ -672,10 +672,6 @@ impl SurfaceMesh {
     }
 }
 
-/// [`parameters::reparameterize`] over a net's triangles, as (v, w).
-pub fn reparameterize(net: &crate::ControlNet, p: SurfacePoint, into: u32) -> Option<(f64, f64)> {
-    parameters::reparameterize(net.topology(), p, into).map(|q| (q.v, q.w))
-}
 
 #[cfg(test)]
 mod tests {

@@ -6,7 +6,7 @@ use super::density::{self, level};
 use super::pattern::Pattern;
 use super::{boundary_points, cut_edge, finer, EdgeCut, Mesher, TriangleCut};
 use crate::error::Result;
-use crate::refine::SurfacePoint;
+use crate::parameters::SurfacePoint;
 use crate::surface::Surface;
 use crate::topology::{Topology, NONE};
 use glam::DVec3;
