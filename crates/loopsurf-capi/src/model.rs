@@ -11,7 +11,7 @@
 use crate::closest::point;
 use crate::status::{input, output, run, Fail};
 use crate::status::{
-    LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_NOT_FINITE, LS_ERR_NULL_POINTER,
+    LS_ERR_INDEX_OUT_OF_RANGE, LS_ERR_INTERNAL, LS_ERR_NOT_FINITE, LS_ERR_NULL_POINTER,
     LS_ERR_PARAMETER_OUT_OF_RANGE,
 };
 use crate::surface::ls_surface;
@@ -112,15 +112,16 @@ pub unsafe extern "C" fn ls_model_corner(
         let (vertex, xyz) = (output(vertex, "vertex")?, output(xyz, "xyz")?);
         let corners = surface.model().corners();
         let v = corners[id(corner, corners.len(), "corner", "corners", "the model")?];
-        // The surface at a triangle's corner is its vertex's exact limit.
-        let topo = surface.net().topology();
-        let tri = topo.fan(v as usize)[0];
-        let at = topo.triangles()[tri as usize]
-            .iter()
-            .position(|&x| x == v)
-            .unwrap_or(0);
-        let (cv, cw) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][at];
-        let x = surface.eval(tri as usize, cv, cw)?.x;
+        // The surface at a triangle's corner is its vertex's exact limit;
+        // a corner of the model is a vertex of some triangle.
+        let p =
+            loopsurf::parameters::vertex_point(surface.net().topology(), v).ok_or_else(|| {
+                Fail::new(
+                    LS_ERR_INTERNAL,
+                    format!("corner vertex {v} is in no triangle"),
+                )
+            })?;
+        let x = surface.eval(p.tri as usize, p.v, p.w)?.x;
         *vertex = v as i32;
         std::ptr::copy_nonoverlapping(x.to_array().as_ptr(), xyz, 3);
         Ok(())

@@ -87,39 +87,7 @@ pub fn run(args: Args) -> Result<(), Error> {
     let mesh = if charts {
         chart_mesh(&args, &surface)?
     } else {
-        // With no density at all, the curvature-adaptive mesh at the
-        // default tolerance: the mesh a user asking for "a mesh" expects.
-        let adapt = args.adapt.is_some() || (args.size.is_none() && args.tolerance.is_none());
-        let mut remesher = Remesher::new(&surface)
-            .adapt_curvature(adapt)
-            .gradation(args.gradation);
-        if let Some(h) = args.size {
-            remesher = remesher.size(h);
-        }
-        if let Some(eps) = args.tolerance {
-            remesher = remesher.tolerance(eps);
-        }
-        if let Some(n) = args.max_triangles {
-            remesher = remesher.max_triangles(n);
-        }
-        let spinner = ProgressBar::new_spinner().with_message("remeshing");
-        spinner.enable_steady_tick(std::time::Duration::from_millis(200));
-        let mesh = remesher.run()?;
-        spinner.finish_and_clear();
-        // The remesher returns its best mesh even where a few edges could
-        // not meet the tolerance; say so rather than pass it silently.
-        let wanted = args
-            .tolerance
-            .or(adapt.then_some(loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE));
-        if let (Some(eps), Some(d)) = (wanted, mesh.deviation) {
-            if d > eps * mesh.diagonal {
-                eprintln!(
-                    "loopsurf: warning: chord tolerance {eps:e} not reached: {:.3e} of the diagonal at worst (the mesh is written)",
-                    d / mesh.diagonal
-                );
-            }
-        }
-        mesh
+        remesh(&args, &surface)?
     };
     let seconds = start.elapsed().as_secs_f64();
     let snapped = if args.no_verify {
@@ -144,53 +112,101 @@ pub fn run(args: Args) -> Result<(), Error> {
     if let Some(path) = &args.write_params {
         write_params(path, &mesh)?;
     }
-    let quality = mesh.quality();
     warn_of_surface_folds(&surface, &mesh);
-    let relative = |d: f64| d / mesh.diagonal;
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
-        writeln!(
-            out,
-            "output: {} vertices, {} triangles, {} hard edges in {seconds:.3} s ({:.2}M triangles/s)",
-            mesh.points.len(),
-            mesh.triangles.len(),
-            mesh.hard_edges.len(),
-            mesh.triangles.len() as f64 / seconds.max(1e-12) / 1e6
-        )?;
-        let line = match (mesh.deviation, snapped) {
-            (Some(b), Some(s)) => format!(
-                "{:.3e} of the diagonal (bound), {:.3e} by snap",
-                relative(b),
-                relative(s)
-            ),
-            (Some(b), None) => format!("{:.3e} of the diagonal (bound)", relative(b)),
-            (None, Some(s)) => format!("{:.3e} of the diagonal by snap", relative(s)),
-            (None, None) => "not measured (no --tolerance, and --no-verify)".into(),
-        };
-        writeln!(out, "max deviation: {line}")?;
-        writeln!(
-            out,
-            "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20° ({} of them forced by features: at a corner, between hard edges, or with every corner on one), {:.3}% below 10°",
-            quality.min_angle,
-            quality.mean_min_angle,
-            100.0 * quality.below_20,
-            quality.below_20_at_features,
-            100.0 * quality.below_10
-        )?;
-        writeln!(
-            out,
-            "edge lengths: {:.4e} to {:.4e}, 90% within {:.4e} to {:.4e}, median {:.4e}",
-            quality.edge_lengths[0],
-            quality.edge_lengths[4],
-            quality.edge_lengths[1],
-            quality.edge_lengths[3],
-            quality.edge_lengths[2]
-        )?;
+        summary(out, &mesh, seconds, snapped)?;
         if let Some((curved, validity)) = &curved {
             curved_output::summary(out, curved, validity)?;
         }
         writeln!(out, "wrote {}", args.output.display())
     })
+}
+
+/// The quality remesher's mesh, with a spinner. With no density at all,
+/// the curvature-adaptive mesh at the default tolerance: the mesh a user
+/// asking for "a mesh" expects.
+fn remesh(args: &Args, surface: &Surface) -> Result<SurfaceMesh, Error> {
+    let adapt = args.adapt.is_some() || (args.size.is_none() && args.tolerance.is_none());
+    let mut remesher = Remesher::new(surface)
+        .adapt_curvature(adapt)
+        .gradation(args.gradation);
+    if let Some(h) = args.size {
+        remesher = remesher.size(h);
+    }
+    if let Some(eps) = args.tolerance {
+        remesher = remesher.tolerance(eps);
+    }
+    if let Some(n) = args.max_triangles {
+        remesher = remesher.max_triangles(n);
+    }
+    let spinner = ProgressBar::new_spinner().with_message("remeshing");
+    spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+    let mesh = remesher.run()?;
+    spinner.finish_and_clear();
+    // The remesher returns its best mesh even where a few edges could
+    // not meet the tolerance; say so rather than pass it silently.
+    let wanted = args
+        .tolerance
+        .or(adapt.then_some(loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE));
+    if let (Some(eps), Some(d)) = (wanted, mesh.deviation) {
+        if d > eps * mesh.diagonal {
+            eprintln!(
+                "loopsurf: warning: chord tolerance {eps:e} not reached: {:.3e} of the diagonal at worst (the mesh is written)",
+                d / mesh.diagonal
+            );
+        }
+    }
+    Ok(mesh)
+}
+
+/// The mesh's size, speed, chord error (the bound measured while meshing
+/// and the one by snap, where known), angles and edge lengths.
+fn summary(
+    out: &mut dyn Write,
+    mesh: &SurfaceMesh,
+    seconds: f64,
+    snapped: Option<f64>,
+) -> std::io::Result<()> {
+    let quality = mesh.quality();
+    let relative = |d: f64| d / mesh.diagonal;
+    writeln!(
+        out,
+        "output: {} vertices, {} triangles, {} hard edges in {seconds:.3} s ({:.2}M triangles/s)",
+        mesh.points.len(),
+        mesh.triangles.len(),
+        mesh.hard_edges.len(),
+        mesh.triangles.len() as f64 / seconds.max(1e-12) / 1e6
+    )?;
+    let line = match (mesh.deviation, snapped) {
+        (Some(b), Some(s)) => format!(
+            "{:.3e} of the diagonal (bound), {:.3e} by snap",
+            relative(b),
+            relative(s)
+        ),
+        (Some(b), None) => format!("{:.3e} of the diagonal (bound)", relative(b)),
+        (None, Some(s)) => format!("{:.3e} of the diagonal by snap", relative(s)),
+        (None, None) => "not measured (no --tolerance, and --no-verify)".into(),
+    };
+    writeln!(out, "max deviation: {line}")?;
+    writeln!(
+        out,
+        "angles: min {:.2}°, mean of per-triangle minima {:.2}°, {:.3}% of triangles below 20° ({} of them forced by features: at a corner, between hard edges, or with every corner on one), {:.3}% below 10°",
+        quality.min_angle,
+        quality.mean_min_angle,
+        100.0 * quality.below_20,
+        quality.below_20_at_features,
+        100.0 * quality.below_10
+    )?;
+    writeln!(
+        out,
+        "edge lengths: {:.4e} to {:.4e}, 90% within {:.4e} to {:.4e}, median {:.4e}",
+        quality.edge_lengths[0],
+        quality.edge_lengths[4],
+        quality.edge_lengths[1],
+        quality.edge_lengths[3],
+        quality.edge_lengths[2]
+    )
 }
 
 /// The chart mesher's mesh, with a progress bar over control triangles.

@@ -1,6 +1,6 @@
 //! The `loopsurf` command as a user runs it: outputs, files, exit codes.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn loopsurf(args: &[&str]) -> Output {
@@ -421,7 +421,30 @@ fn mesh_the_viking_writes_its_summary_and_files() {
             "summary lacks '{needle}':\n{summary}"
         );
     }
-    // The main job's mesh: its quality as the summary states it.
+    assert_angles_in_summary(&summary);
+    assert_vtu_arrays(&vtu);
+    assert_params_read_back_bit_exact(&params);
+    assert_uniform_meshes_read_back();
+    let charts = scratch("viking-charts.vtu");
+    let out = loopsurf(&[
+        "mesh",
+        "--example",
+        "viking",
+        "--charts",
+        "--size",
+        "0.2",
+        "--no-verify",
+        "-o",
+        charts.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let xml = std::fs::read_to_string(&charts).unwrap();
+    assert!(xml.contains("Name=\"control_tri\""));
+}
+
+/// The quality the README promises of the Viking's adapted mesh, as the
+/// summary states it: no angle below 20°, a mean smallest angle of 50°.
+fn assert_angles_in_summary(summary: &str) {
     let number_after = |label: &str| -> f64 {
         let rest = &summary[summary.find(label).expect(label) + label.len()..];
         rest[..rest.find('°').expect("degrees")]
@@ -437,7 +460,11 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         min >= 20.0 && mean_min >= 50.0,
         "{min}° / {mean_min}°:\n{summary}"
     );
-    let xml = std::fs::read_to_string(&vtu).unwrap();
+}
+
+/// The remesher's .vtu names its point and cell arrays.
+fn assert_vtu_arrays(vtu: &Path) {
+    let xml = std::fs::read_to_string(vtu).unwrap();
     for name in [
         "tri",
         "v",
@@ -453,7 +480,10 @@ fn mesh_the_viking_writes_its_summary_and_files() {
             "vtu lacks {name}"
         );
     }
-    // Every params line evaluates to its vertex, read back bit-exact.
+}
+
+/// Every params line evaluates to its vertex, read back bit-exact.
+fn assert_params_read_back_bit_exact(params: &Path) {
     let ex = loopsurf::examples::by_name("viking").unwrap();
     let mut net = loopsurf::ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
     net.tag_by_angle(30.0).unwrap();
@@ -462,7 +492,7 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         .adapt_curvature(true)
         .run()
         .unwrap();
-    let lines: Vec<String> = std::fs::read_to_string(&params)
+    let lines: Vec<String> = std::fs::read_to_string(params)
         .unwrap()
         .lines()
         .map(String::from)
@@ -474,6 +504,11 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         assert_eq!(f[1].parse::<f64>().unwrap().to_bits(), p.v.to_bits());
         assert_eq!(f[2].parse::<f64>().unwrap().to_bits(), p.w.to_bits());
     }
+}
+
+/// The chart mesher's uniform meshes as .obj, .stl and .tri read back
+/// with all their triangles.
+fn assert_uniform_meshes_read_back() {
     for ext in ["obj", "stl", "tri"] {
         let path = scratch(&format!("viking3.{ext}"));
         let out = loopsurf(&[
@@ -490,21 +525,6 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         let back = loopsurf::ControlNet::read(&path).unwrap();
         assert_eq!(back.triangles().len(), 9 * 1680, "{ext}");
     }
-    let charts = scratch("viking-charts.vtu");
-    let out = loopsurf(&[
-        "mesh",
-        "--example",
-        "viking",
-        "--charts",
-        "--size",
-        "0.2",
-        "--no-verify",
-        "-o",
-        charts.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let xml = std::fs::read_to_string(&charts).unwrap();
-    assert!(xml.contains("Name=\"control_tri\""));
 }
 
 #[test]
@@ -766,7 +786,20 @@ fn topology_of_the_cube() {
     for (id, line) in lines[13..].iter().enumerate() {
         assert_eq!(*line, format!("face {id} triangles 18 loops 1"));
     }
-    let xml = std::fs::read_to_string(&vtu).unwrap();
+    assert_cube_topology_vtu(&vtu, &surface);
+    // Anything but a .vtu is refused before any work.
+    assert_clean_failure(
+        &loopsurf(&["topology", "--example", "cube", "-o", "x.obj"]),
+        "x.obj",
+    );
+}
+
+/// The cube's topology .vtu: 108 control triangles labelled with their
+/// faces, 36 hard edges (line cells) with their edges, 8 corner vertices
+/// with their corners.
+fn assert_cube_topology_vtu(vtu: &Path, surface: &loopsurf::Surface) {
+    let model = surface.model();
+    let xml = std::fs::read_to_string(vtu).unwrap();
     assert!(
         xml.contains("NumberOfPoints=\"56\" NumberOfCells=\"144\""),
         "108 triangles and 36 hard edges"
@@ -809,11 +842,6 @@ fn topology_of_the_cube() {
     for (id, &v) in model.corners().iter().enumerate() {
         assert_eq!(corner[v as usize], id as i32);
     }
-    // Anything but a .vtu is refused before any work.
-    assert_clean_failure(
-        &loopsurf(&["topology", "--example", "cube", "-o", "x.obj"]),
-        "x.obj",
-    );
 }
 
 /// The open disk's boundary is one closed edge: no corner, its chain
@@ -972,6 +1000,15 @@ fn mesh_vtu_carries_faces_and_edges() {
 /// by its first vertex, with one line.
 #[test]
 fn curved_meshes_and_curving_another_mesh() {
+    let msh = curved_viking_msh();
+    curve_a_chart_mesh_to_p3();
+    measure_a_p2_mesh_as_given(&msh);
+    refuse_curving_onto_another_model(&msh);
+}
+
+/// `mesh --order 2` to .msh: the summary reports the order and the scaled
+/// Jacobian, and the file is ASCII MSH 4.1.
+fn curved_viking_msh() -> PathBuf {
     let msh = scratch("viking-p2.msh");
     let out = loopsurf(&[
         "mesh",
@@ -997,7 +1034,13 @@ fn curved_meshes_and_curving_another_mesh() {
         "{}",
         &file[..40]
     );
+    msh
+}
 
+/// A chart mesh of the Viking as .off, curved to P3 in .vtu by `curve`,
+/// which finds its 160 hard edges and writes the params and the scaled
+/// Jacobian.
+fn curve_a_chart_mesh_to_p3() {
     let linear = scratch("viking-charts.off");
     let out = loopsurf(&[
         "mesh",
@@ -1034,9 +1077,11 @@ fn curved_meshes_and_curving_another_mesh() {
     );
     let xml = std::fs::read_to_string(&curved).unwrap();
     assert!(xml.contains("Name=\"loopsurf_params\"") && xml.contains("Name=\"scaled_jacobian\""));
+}
 
-    // --measure: our own P2 mesh, as given and curved again, is as near
-    // (the numbers: order, distance, triangle, distance, triangle).
+/// `curve --measure`: our own P2 mesh, as given and curved again, is as
+/// near (the numbers: order, distance, triangle, distance, triangle).
+fn measure_a_p2_mesh_as_given(msh: &Path) {
     let again = scratch("viking-p2-again.msh");
     let out = loopsurf(&[
         "curve",
@@ -1067,7 +1112,11 @@ fn curved_meshes_and_curving_another_mesh() {
         numbers[1] > 0.0 && (numbers[1] - numbers[3]).abs() <= 1e-3 * numbers[1],
         "{line}"
     );
+}
 
+/// A mesh of the Viking onto the sphere is refused by its first vertex,
+/// and an output other than .msh or .vtu by its extension.
+fn refuse_curving_onto_another_model(msh: &Path) {
     let other = scratch("never.msh");
     let out = loopsurf(&[
         "curve",

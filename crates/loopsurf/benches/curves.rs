@@ -34,43 +34,73 @@ fn curves(c: &mut Criterion) {
         .unwrap_or_else(|e| panic!("{e} (run scripts/test.sh once to fetch the CGAL meshes)"));
     net.tag_by_angle(30.0).unwrap();
     let surface = Surface::new(&net).unwrap();
-    let diagonal = net.bbox_diagonal();
-    let model = surface.model();
-    let mut rng = Lcg(5);
-    let queries: Vec<(usize, f64)> = (0..QUERIES)
-        .map(|_| {
-            let c = (rng.next() * model.curves().len() as f64) as usize;
-            (c, rng.next() * model.curves()[c].len() as f64)
-        })
-        .collect();
-    let points: Vec<(usize, f64, DVec3)> = queries
-        .iter()
-        .map(|&(c, t)| {
-            let x = LimitCurve::new(&surface, c).unwrap().eval(t).unwrap().x;
-            let d = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
-            (c, t, x + 1e-3 * diagonal * d)
-        })
-        .collect();
-    let lengths: Vec<f64> = (0..model.curves().len())
-        .map(|c| {
-            LimitCurve::new(&surface, c)
-                .unwrap()
-                .length(0.0, model.curves()[c].len() as f64)
-                .unwrap()
-        })
-        .collect();
+    let queries = Queries::new(&surface);
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
+    bench_queries(c, &surface, &queries, &one);
+}
+
+/// The queries: random (curve, t), points within 1e-3 × the diagonal of
+/// them, and each curve's length.
+struct Queries {
+    params: Vec<(usize, f64)>,
+    points: Vec<(usize, f64, DVec3)>,
+    lengths: Vec<f64>,
+}
+
+impl Queries {
+    fn new(surface: &Surface) -> Queries {
+        let diagonal = surface.net().bbox_diagonal();
+        let model = surface.model();
+        let mut rng = Lcg(5);
+        let queries: Vec<(usize, f64)> = (0..QUERIES)
+            .map(|_| {
+                let c = (rng.next() * model.curves().len() as f64) as usize;
+                (c, rng.next() * model.curves()[c].len() as f64)
+            })
+            .collect();
+        let points: Vec<(usize, f64, DVec3)> = queries
+            .iter()
+            .map(|&(c, t)| {
+                let x = LimitCurve::new(surface, c).unwrap().eval(t).unwrap().x;
+                let d = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
+                (c, t, x + 1e-3 * diagonal * d)
+            })
+            .collect();
+        let lengths: Vec<f64> = (0..model.curves().len())
+            .map(|c| {
+                LimitCurve::new(surface, c)
+                    .unwrap()
+                    .length(0.0, model.curves()[c].len() as f64)
+                    .unwrap()
+            })
+            .collect();
+        Queries {
+            params: queries,
+            points,
+            lengths,
+        }
+    }
+}
+
+/// The four benchmarks, on one thread.
+fn bench_queries(c: &mut Criterion, surface: &Surface, queries: &Queries, one: &rayon::ThreadPool) {
+    let model = surface.model();
+    let Queries {
+        params: queries,
+        points,
+        lengths,
+    } = queries;
     let mut group = c.benchmark_group("curves_fandisk");
     group.throughput(Throughput::Elements(QUERIES as u64));
     group.sample_size(10);
     group.bench_function("eval", |b| {
         b.iter(|| {
             one.install(|| {
-                for &(c, t) in &queries {
-                    std::hint::black_box(LimitCurve::new(&surface, c).unwrap().eval(t).unwrap());
+                for &(c, t) in queries {
+                    std::hint::black_box(LimitCurve::new(surface, c).unwrap().eval(t).unwrap());
                 }
             })
         })
@@ -78,10 +108,10 @@ fn curves(c: &mut Criterion) {
     group.bench_function("param_at_length", |b| {
         b.iter(|| {
             one.install(|| {
-                for &(c, t) in &queries {
+                for &(c, t) in queries {
                     let s = lengths[c] * t / model.curves()[c].len() as f64;
                     std::hint::black_box(
-                        LimitCurve::new(&surface, c)
+                        LimitCurve::new(surface, c)
                             .unwrap()
                             .param_at_length(s)
                             .unwrap(),
@@ -93,9 +123,9 @@ fn curves(c: &mut Criterion) {
     group.bench_function("closest_point", |b| {
         b.iter(|| {
             one.install(|| {
-                for &(c, _, p) in &points {
+                for &(c, _, p) in points {
                     std::hint::black_box(
-                        LimitCurve::new(&surface, c)
+                        LimitCurve::new(surface, c)
                             .unwrap()
                             .closest_point(p)
                             .unwrap(),
@@ -107,10 +137,10 @@ fn curves(c: &mut Criterion) {
     group.bench_function("project", |b| {
         b.iter(|| {
             one.install(|| {
-                for &(c, t, p) in &points {
+                for &(c, t, p) in points {
                     let n = model.curves()[c].len() as f64;
                     std::hint::black_box(
-                        LimitCurve::new(&surface, c)
+                        LimitCurve::new(surface, c)
                             .unwrap()
                             .project(p, (t + 0.05).min(n))
                             .unwrap(),

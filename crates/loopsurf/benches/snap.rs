@@ -45,6 +45,21 @@ fn snap(c: &mut Criterion) {
             "{name}: snap index built in {:.1} ms",
             start.elapsed().as_secs_f64() * 1e3
         );
+        let queries = Queries::new(&net, &surface);
+        bench_queries(c, name, &surface, &queries, &single);
+    }
+}
+
+/// The query points: (a) in the bounding box, (b) near the surface, (c)
+/// a walk of small steps.
+struct Queries {
+    in_box: Vec<DVec3>,
+    near: Vec<DVec3>,
+    walk: Vec<DVec3>,
+}
+
+impl Queries {
+    fn new(net: &ControlNet, surface: &Surface) -> Queries {
         let lo = net.points().iter().fold(DVec3::INFINITY, |a, &b| a.min(b));
         let hi = net
             .points()
@@ -69,55 +84,67 @@ fn snap(c: &mut Criterion) {
             let step = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5);
             walk.push(*walk.last().unwrap() + 0.002 * diagonal * step);
         }
-        let mut group = c.benchmark_group(format!("snap_{name}"));
-        group.sample_size(10);
-        group.throughput(Throughput::Elements(QUERIES as u64));
-        group.bench_function("a_random_in_box", |b| {
-            b.iter(|| {
-                single.install(|| {
-                    in_box
-                        .iter()
-                        .map(|&p| snap::closest_point(&surface, p).unwrap().distance)
-                        .sum::<f64>()
-                })
-            })
-        });
-        group.bench_function("b_within_1pct", |b| {
-            b.iter(|| {
-                single.install(|| {
-                    near.iter()
-                        .map(|&p| snap::closest_point(&surface, p).unwrap().distance)
-                        .sum::<f64>()
-                })
-            })
-        });
-        // What the tight certificate costs over a loose one.
-        group.bench_function("b_within_1pct_tolerance_1e-6", |b| {
-            b.iter(|| {
-                single.install(|| {
-                    near.iter()
-                        .map(|&p| {
-                            snap::closest_point_within(&surface, p, 1e-6)
-                                .unwrap()
-                                .distance
-                        })
-                        .sum::<f64>()
-                })
-            })
-        });
-        group.bench_function("c_snap_near_walk", |b| {
-            b.iter(|| {
-                single.install(|| {
-                    let mut hint = snap::closest_point(&surface, walk[0]).unwrap();
-                    for &p in &walk[1..] {
-                        hint = snap::snap_near(&surface, p, hint.tri, hint.v, hint.w).unwrap();
-                    }
-                    hint.distance
-                })
-            })
-        });
-        group.finish();
+        Queries { in_box, near, walk }
     }
+}
+
+/// The four benchmarks of one mesh, on one thread.
+fn bench_queries(
+    c: &mut Criterion,
+    name: &str,
+    surface: &Surface,
+    queries: &Queries,
+    single: &rayon::ThreadPool,
+) {
+    let Queries { in_box, near, walk } = queries;
+    let mut group = c.benchmark_group(format!("snap_{name}"));
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(QUERIES as u64));
+    group.bench_function("a_random_in_box", |b| {
+        b.iter(|| {
+            single.install(|| {
+                in_box
+                    .iter()
+                    .map(|&p| snap::closest_point(surface, p).unwrap().distance)
+                    .sum::<f64>()
+            })
+        })
+    });
+    group.bench_function("b_within_1pct", |b| {
+        b.iter(|| {
+            single.install(|| {
+                near.iter()
+                    .map(|&p| snap::closest_point(surface, p).unwrap().distance)
+                    .sum::<f64>()
+            })
+        })
+    });
+    // What the tight certificate costs over a loose one.
+    group.bench_function("b_within_1pct_tolerance_1e-6", |b| {
+        b.iter(|| {
+            single.install(|| {
+                near.iter()
+                    .map(|&p| {
+                        snap::closest_point_within(surface, p, 1e-6)
+                            .unwrap()
+                            .distance
+                    })
+                    .sum::<f64>()
+            })
+        })
+    });
+    group.bench_function("c_snap_near_walk", |b| {
+        b.iter(|| {
+            single.install(|| {
+                let mut hint = snap::closest_point(surface, walk[0]).unwrap();
+                for &p in &walk[1..] {
+                    hint = snap::snap_near(surface, p, hint.tri, hint.v, hint.w).unwrap();
+                }
+                hint.distance
+            })
+        })
+    });
+    group.finish();
 }
 
 criterion_group!(benches, snap);

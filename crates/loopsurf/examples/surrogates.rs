@@ -7,7 +7,7 @@
 //!
 //! `cargo run --release -p loopsurf --example surrogates`
 
-use loopsurf::examples::cad::{self, Analytic, CapStyle, Deviation};
+use loopsurf::cad::{self, Analytic, CapStyle, Deviation};
 use loopsurf::DVec3;
 use loopsurf::{ControlNet, Surface, SurfaceMode};
 use std::time::Instant;

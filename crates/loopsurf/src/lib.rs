@@ -24,7 +24,8 @@
 //! 6. On the surface: [`stream`] (a surface as bytes), [`folds`] (where the
 //!    geometry folds back on itself), [`snap`] (certified closest points)
 //!    → [`curve`] (the model's curves in space, their length and
-//!    projection).
+//!    projection), and [`cad`] (CAD-like tessellations of analytic shapes
+//!    with their exact surfaces, to measure a surrogate against the truth).
 //! 7. Meshes: [`mesh`] (the chart mesher) → [`remesh`] (the quality
 //!    remesher that starts from it), [`adapt`] (adaptive Loop subdivision,
 //!    after Liu and Kondo) and [`fairness`] (how far the interpolating
@@ -40,6 +41,7 @@
 //! keeps for it through a trait, without knowing what it is.
 
 pub mod adapt;
+pub mod cad;
 pub mod curve;
 pub mod error;
 pub(crate) mod eval;

@@ -191,70 +191,63 @@ fn curves_of(
     corner_id: &[u32],
     face_of: &[u32],
 ) -> Vec<Curve> {
-    let ne = topo.num_edges();
-    // The hard edges at each vertex (at most two at a non-corner).
-    let mut hard_at: Vec<Vec<u32>> = vec![Vec::new(); topo.num_vertices()];
-    for e in 0..ne {
-        if features.is_hard_edge(e) {
-            for v in topo.edges()[e] {
-                hard_at[v as usize].push(e as u32);
-            }
-        }
-    }
-    let other_end = |e: u32, v: u32| {
-        let [a, b] = topo.edges()[e as usize];
-        if a == v {
-            b
-        } else {
-            a
-        }
-    };
-    // From vertex v, having arrived by edge e: the next edge, unless v ends
-    // the curve.
-    let next_edge = |v: u32, e: u32| -> Option<u32> {
-        if corner_id[v as usize] != NONE {
-            return None;
-        }
-        hard_at[v as usize].iter().copied().find(|&x| x != e)
-    };
-    let mut seen = vec![false; ne];
+    let mut tracer = Tracer::new(topo, features, corner_id);
     let mut curves = Vec::new();
-    for first in 0..ne as u32 {
-        if !features.is_hard_edge(first as usize) || seen[first as usize] {
+    for first in 0..topo.num_edges() as u32 {
+        if !features.is_hard_edge(first as usize) || tracer.seen[first as usize] {
             continue;
         }
-        // Direction: as the edge's first triangle runs it.
+        curves.push(tracer.trace(first, face_of));
+    }
+    curves
+}
+
+/// Follows hard edges from vertex to vertex, each edge once.
+struct Tracer<'a> {
+    topo: &'a Topology,
+    corner_id: &'a [u32],
+    /// The hard edges at each vertex (at most two at a non-corner).
+    hard_at: Vec<Vec<u32>>,
+    /// The edges already on a curve.
+    seen: Vec<bool>,
+}
+
+impl<'a> Tracer<'a> {
+    fn new(topo: &'a Topology, features: &Features, corner_id: &'a [u32]) -> Tracer<'a> {
+        let ne = topo.num_edges();
+        let mut hard_at: Vec<Vec<u32>> = vec![Vec::new(); topo.num_vertices()];
+        for e in 0..ne {
+            if features.is_hard_edge(e) {
+                for v in topo.edges()[e] {
+                    hard_at[v as usize].push(e as u32);
+                }
+            }
+        }
+        Tracer {
+            topo,
+            corner_id,
+            hard_at,
+            seen: vec![false; ne],
+        }
+    }
+
+    /// The curve through hard edge `first`, directed as the edge's first
+    /// triangle runs it: forward from its end and, unless that closes,
+    /// backward from its start.
+    fn trace(&mut self, first: u32, face_of: &[u32]) -> Curve {
+        let topo = self.topo;
         let [a, b] = topo.edges()[first as usize];
         let t0 = topo.edge_triangles()[first as usize][0];
         let (start, end) = if runs(topo, t0, a, b) { (a, b) } else { (b, a) };
-        // Forward from `end`.
         let mut chain = vec![start, end];
         let mut edges = vec![first];
-        seen[first as usize] = true;
-        let (mut v, mut e) = (end, first);
-        let mut closed = false;
-        while let Some(x) = next_edge(v, e) {
-            if x == first {
-                closed = true;
-                break;
-            }
-            seen[x as usize] = true;
-            v = other_end(x, v);
-            e = x;
-            chain.push(v);
-            edges.push(x);
-        }
+        self.seen[first as usize] = true;
+        let (ahead, ahead_edges, closed) = self.walk(end, first, Some(first));
+        chain.extend(ahead);
+        edges.extend(ahead_edges);
         if !closed {
             // Backward from `start`, prepended.
-            let (mut back_v, mut back_e) = (start, first);
-            let (mut pre_chain, mut pre_edges) = (Vec::new(), Vec::new());
-            while let Some(x) = next_edge(back_v, back_e) {
-                seen[x as usize] = true;
-                back_v = other_end(x, back_v);
-                back_e = x;
-                pre_chain.push(back_v);
-                pre_edges.push(x);
-            }
+            let (mut pre_chain, mut pre_edges, _) = self.walk(start, first, None);
             pre_chain.reverse();
             pre_edges.reverse();
             pre_chain.extend(chain);
@@ -264,8 +257,8 @@ fn curves_of(
         }
         let corners = (!closed).then(|| {
             [
-                corner_id[chain[0] as usize],
-                corner_id[*chain.last().unwrap_or(&chain[0]) as usize],
+                self.corner_id[chain[0] as usize],
+                self.corner_id[*chain.last().unwrap_or(&chain[0]) as usize],
             ]
         });
         // Left: the triangle of the first edge that runs it forward.
@@ -279,14 +272,50 @@ fn curves_of(
                 .map(|t| face_of[t as usize])
         };
         let faces = [side(true), side(false)];
-        curves.push(Curve {
+        Curve {
             chain,
             edges,
             corners,
             faces,
-        });
+        }
     }
-    curves
+
+    /// From vertex v, having arrived by edge e, the vertices and edges on
+    /// until the curve ends (at a corner or an end of the hard edges) or
+    /// comes back to edge `closing` (then the last value is true).
+    fn walk(&mut self, mut v: u32, mut e: u32, closing: Option<u32>) -> (Vec<u32>, Vec<u32>, bool) {
+        let (mut chain, mut edges) = (Vec::new(), Vec::new());
+        while let Some(x) = self.next_edge(v, e) {
+            if Some(x) == closing {
+                return (chain, edges, true);
+            }
+            self.seen[x as usize] = true;
+            v = self.other_end(x, v);
+            e = x;
+            chain.push(v);
+            edges.push(x);
+        }
+        (chain, edges, false)
+    }
+
+    /// From vertex v, having arrived by edge e: the next edge, unless v
+    /// ends the curve.
+    fn next_edge(&self, v: u32, e: u32) -> Option<u32> {
+        if self.corner_id[v as usize] != NONE {
+            return None;
+        }
+        self.hard_at[v as usize].iter().copied().find(|&x| x != e)
+    }
+
+    /// The end of edge e that is not v.
+    fn other_end(&self, e: u32, v: u32) -> u32 {
+        let [a, b] = self.topo.edges()[e as usize];
+        if a == v {
+            b
+        } else {
+            a
+        }
+    }
 }
 
 /// The loops of face `f`: its boundary half-edges (hard edges as its

@@ -24,6 +24,24 @@ pub struct SurfacePoint {
 /// from corner k to corner k + 1 (mod 3), as in [`Topology`].
 pub const CORNERS: [DVec2; 3] = [DVec2::ZERO, DVec2::X, DVec2::Y];
 
+/// Interior sample parameters (v, w) of a control triangle for curvature
+/// estimates: the centroid, points towards each corner and each side
+/// (curvature peaks next to irregular vertices), none exactly on the
+/// boundary (special corners report no derivatives). The chart mesher's
+/// density and the remesher's sizes sample the same points.
+pub const INTERIOR_SAMPLES: [(f64, f64); 10] = [
+    (1.0 / 3.0, 1.0 / 3.0),
+    (0.05, 0.05),
+    (0.9, 0.05),
+    (0.05, 0.9),
+    (0.45, 0.05),
+    (0.45, 0.5),
+    (0.05, 0.45),
+    (0.2, 0.2),
+    (0.6, 0.2),
+    (0.2, 0.6),
+];
+
 impl SurfacePoint {
     /// Corner `k` of triangle `tri`: exactly the limit position of the
     /// control vertex there.

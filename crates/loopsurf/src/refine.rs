@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::features::Features;
 use crate::features::VertexKind;
 use crate::net::{ControlNet, NeighbourSums};
-pub use crate::parameters::SurfacePoint;
+use crate::parameters::SurfacePoint;
 use crate::parameters::{vertex_point, CORNERS};
 use crate::rules;
 use crate::topology::{corner_of, Topology, MIN_PER_TASK, NONE};

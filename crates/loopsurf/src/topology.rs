@@ -100,7 +100,6 @@ impl Topology {
     fn refined_with(&self, min_len: usize) -> Topology {
         // Every output slot is a pure function of its parent, so each array
         // is filled in place, in parallel, with no searching or scattering.
-        let nv = self.nverts as u32;
         let ne = self.edges.len();
         let nt = self.tris.len();
         let mut edges = vec![[0u32; 2]; 2 * ne + 3 * nt];
@@ -110,6 +109,34 @@ impl Topology {
         // overwritten below.
         let mut edge_tris = vec![[0u32; 2]; 2 * ne + 3 * nt];
         let (halves, inner) = edges.split_at_mut(2 * ne);
+        self.fill_halves(halves, min_len);
+        let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
+        self.fill_half_triangles(half_tris, min_len);
+        inner_tris
+            .par_chunks_mut(3)
+            .with_min_len(min_len)
+            .enumerate()
+            .for_each(|(t, out)| {
+                let t = t as u32;
+                for (i, slot) in out.iter_mut().enumerate() {
+                    *slot = [4 * t + i as u32, 4 * t + 3];
+                }
+            });
+        self.fill_children(inner, &mut tris, &mut tri_edges, min_len);
+        Topology {
+            nverts: self.nverts + ne,
+            tris,
+            edges,
+            edge_tris,
+            tri_edges,
+            rings: OnceLock::new(),
+        }
+    }
+
+    /// The refined edges 2e and 2e + 1: edge e's halves, from each end to
+    /// its midpoint vertex.
+    fn fill_halves(&self, halves: &mut [[u32; 2]], min_len: usize) {
+        let nv = self.nverts as u32;
         halves
             .par_chunks_mut(2)
             .with_min_len(min_len)
@@ -120,7 +147,11 @@ impl Topology {
                 out[0] = [a, m];
                 out[1] = [b, m];
             });
-        let (half_tris, inner_tris) = edge_tris.split_at_mut(2 * ne);
+    }
+
+    /// The triangles of edge e's halves: the children at each end's corner
+    /// of e's triangles.
+    fn fill_half_triangles(&self, half_tris: &mut [[u32; 2]], min_len: usize) {
         half_tris
             .par_chunks_mut(2)
             .with_min_len(min_len)
@@ -137,16 +168,19 @@ impl Topology {
                     out[h] = [child(t0, v), child(t1, v)];
                 }
             });
-        inner_tris
-            .par_chunks_mut(3)
-            .with_min_len(min_len)
-            .enumerate()
-            .for_each(|(t, out)| {
-                let t = t as u32;
-                for (i, slot) in out.iter_mut().enumerate() {
-                    *slot = [4 * t + i as u32, 4 * t + 3];
-                }
-            });
+    }
+
+    /// Each triangle's three interior edges and four children, with the
+    /// children's edges.
+    fn fill_children(
+        &self,
+        inner: &mut [[u32; 2]],
+        tris: &mut [[u32; 3]],
+        tri_edges: &mut [[u32; 3]],
+        min_len: usize,
+    ) {
+        let nv = self.nverts as u32;
+        let ne = self.edges.len();
         inner
             .par_chunks_mut(3)
             .zip(tris.par_chunks_mut(4))
@@ -178,14 +212,6 @@ impl Topology {
                 child_tris[3] = [m[1], m[2], m[0]];
                 child_edges[3] = [inner(2), inner(0), inner(1)];
             });
-        Topology {
-            nverts: self.nverts + ne,
-            tris,
-            edges,
-            edge_tris,
-            tri_edges,
-            rings: OnceLock::new(),
-        }
     }
 
     /// Number of vertices, including unreferenced ones.
@@ -642,15 +668,46 @@ type EdgeArrays = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>);
 /// and checks that each edge has one or two triangles traversing it in
 /// opposite directions.
 fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
+    let order = sorted_half_edges(tris);
+    let (groups, group_of_slot) = group_half_edges(tris, &order)?;
+    // Edges numbered in order of their first half-edge.
+    let nslots = tris.len() * 3;
+    let mut id_of_group = vec![NONE; groups.len()];
+    let mut edges = Vec::with_capacity(groups.len());
+    let mut edge_tris = Vec::with_capacity(groups.len());
+    let mut tri_edges = vec![[0u32; 3]; tris.len()];
+    for slot in 0..nslots {
+        let g = group_of_slot[slot] as usize;
+        if id_of_group[g] == NONE {
+            id_of_group[g] = edges.len() as u32;
+            let (start, len) = groups[g];
+            let k = order[start].0;
+            edges.push([(k >> 32) as u32, k as u32]);
+            let t0 = order[start].1 / 3;
+            let t1 = if len == 2 {
+                order[start + 1].1 / 3
+            } else {
+                NONE
+            };
+            edge_tris.push([t0.min(t1), if len == 2 { t0.max(t1) } else { NONE }]);
+        }
+        tri_edges[slot / 3][slot % 3] = id_of_group[g];
+    }
+    Ok((edges, edge_tris, tri_edges))
+}
+
+/// The half-edge slots (3t + k runs from corner k of triangle t) keyed by
+/// their sorted ends, smaller << 32 | larger, and sorted by key: a
+/// counting sort on the smaller vertex, then each bucket (a vertex's few
+/// edges) sorted on its own. The same order as a full sort, in linear
+/// time; this is most of building a topology.
+fn sorted_half_edges(tris: &[[u32; 3]]) -> Vec<(u64, u32)> {
     let nslots = tris.len() * 3;
     let key = |slot: usize| {
         let c = tris[slot / 3];
         let [a, b] = sorted(c[slot % 3], c[(slot + 1) % 3]);
         (a as u64) << 32 | b as u64
     };
-    // Sorted by key: a counting sort on the smaller vertex, then each
-    // bucket (a vertex's few edges) sorted on its own. The same order as a
-    // full sort, in linear time; this is most of building a topology.
     let nverts = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
     let mut start = vec![0u32; nverts + 1];
     for s in 0..nslots {
@@ -670,8 +727,18 @@ fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
     for v in 0..nverts {
         order[start[v] as usize..start[v + 1] as usize].sort_unstable();
     }
-    // Group runs of equal keys; give each group the id of its first appearance.
-    let mut group_of_slot = vec![0u32; nslots];
+    order
+}
+
+/// Runs of half-edges with the same ends, as (start, length) in the
+/// sorted order, and the run of each half-edge slot.
+type Groups = (Vec<(usize, usize)>, Vec<u32>);
+
+/// The runs of equal keys in `order`, as (start, length), and each slot's
+/// run; a run of more than two half-edges is a non-manifold edge, and two
+/// running the same way an inconsistent orientation.
+fn group_half_edges(tris: &[[u32; 3]], order: &[(u64, u32)]) -> Result<Groups> {
+    let mut group_of_slot = vec![0u32; tris.len() * 3];
     let mut groups: Vec<(usize, usize)> = Vec::new(); // (start, len) in `order`
     let mut i = 0;
     while i < order.len() {
@@ -709,28 +776,7 @@ fn build_edges(tris: &[[u32; 3]]) -> Result<EdgeArrays> {
         groups.push((i, j - i));
         i = j;
     }
-    let mut id_of_group = vec![NONE; groups.len()];
-    let mut edges = Vec::with_capacity(groups.len());
-    let mut edge_tris = Vec::with_capacity(groups.len());
-    let mut tri_edges = vec![[0u32; 3]; tris.len()];
-    for slot in 0..nslots {
-        let g = group_of_slot[slot] as usize;
-        if id_of_group[g] == NONE {
-            id_of_group[g] = edges.len() as u32;
-            let (start, len) = groups[g];
-            let k = order[start].0;
-            edges.push([(k >> 32) as u32, k as u32]);
-            let t0 = order[start].1 / 3;
-            let t1 = if len == 2 {
-                order[start + 1].1 / 3
-            } else {
-                NONE
-            };
-            edge_tris.push([t0.min(t1), if len == 2 { t0.max(t1) } else { NONE }]);
-        }
-        tri_edges[slot / 3][slot % 3] = id_of_group[g];
-    }
-    Ok((edges, edge_tris, tri_edges))
+    Ok((groups, group_of_slot))
 }
 
 #[cfg(test)]

@@ -1,4 +1,4 @@
-//! The CAD-like shapes of `examples::cad` and the baseline of every
+//! The CAD-like shapes of `cad` and the baseline of every
 //! surrogate against their true surfaces (docs/fitting.md).
 //!
 //! The exact distances are checked against formulas and samplings written
@@ -8,7 +8,7 @@
 //! sampling of the parametric surface for every shape, and points placed
 //! at known offsets along the true normal.
 
-use loopsurf::examples::cad::{self, Analytic, CapStyle};
+use loopsurf::cad::{self, Analytic, CapStyle};
 use loopsurf::{DVec3, Surface, SurfaceMode};
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::{FRAC_PI_2, TAU};

@@ -10,7 +10,7 @@ mod common;
 use common::{cgal_mesh, example};
 use loopsurf::io;
 use loopsurf::mesh::high_order::{onto_surface, CurvedMesh, DEFAULT_MAX_MOVE};
-use loopsurf::{ControlNet, DVec3, Density, LimitCurve, Mesher, Remesher, Surface};
+use loopsurf::{ControlNet, DVec3, Density, LimitCurve, Mesher, Remesher, Surface, SurfaceMesh};
 use std::collections::HashMap;
 
 /// Every node is `eval` of its parameters to 1e-12 of the diagonal.
@@ -218,64 +218,10 @@ fn curving_a_mesh_made_elsewhere() {
     io::write_mesh(&file, &mesh.points, &mesh.triangles).unwrap();
     let read = io::read_off(&file, &io::ParseOptions::default()).unwrap();
     let tris: Vec<[u32; 3]> = read.tris.iter().map(|t| t.map(|i| i as u32)).collect();
-
-    let onto = onto_surface(&surface, &read.points, &tris, DEFAULT_MAX_MOVE).unwrap();
-    assert!(
-        onto.largest_move <= 1e-10 * diagonal,
-        "moved {:e}",
-        onto.largest_move
-    );
-    assert_eq!(onto.mesh.faces, mesh.faces);
-    check_hard_edges(
-        &surface,
-        &mesh.hard_edges,
-        &mesh.hard_edge_curves,
-        &onto.mesh.hard_edges,
-    );
-    let curved = onto.mesh.raise_order(&surface, 2).unwrap();
-    check_on_surface("fandisk", &surface, &curved);
-
-    // A deterministic perturbation of 1e-4 of the diagonal.
-    let bump = 1e-4 * diagonal;
-    let moved: Vec<DVec3> = read
-        .points
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let s = (i as f64 * 0.618_033_988_7).fract();
-            *p + bump * DVec3::new((7.0 * s).sin(), (11.0 * s).cos(), (13.0 * s).sin())
-                / 3f64.sqrt()
-        })
-        .collect();
-    let onto = onto_surface(&surface, &moved, &tris, DEFAULT_MAX_MOVE).unwrap();
-    assert!(
-        onto.largest_move <= 2.0 * bump,
-        "moved {:e}",
-        onto.largest_move
-    );
-    check_hard_edges(
-        &surface,
-        &mesh.hard_edges,
-        &mesh.hard_edge_curves,
-        &onto.mesh.hard_edges,
-    );
-    let curved = onto.mesh.raise_order(&surface, 3).unwrap();
-    check_on_surface("perturbed fandisk", &surface, &curved);
-    check_shared_edges("perturbed fandisk", &curved);
-    for (line, &c) in curved.lines.chunks(4).zip(&curved.line_curves) {
-        for &node in line {
-            let snap = LimitCurve::new(&surface, c as usize)
-                .unwrap()
-                .closest_point(curved.nodes[node as usize])
-                .unwrap();
-            assert!(
-                snap.distance <= 1e-9 * diagonal,
-                "node {node} off curve {c}"
-            );
-        }
-    }
-
-    let mut far = read.points.clone();
+    let points = &read.points;
+    put_back_unmoved(&surface, &mesh, points, &tris);
+    put_back_from_a_perturbed_copy(&surface, &mesh, points, &tris);
+    let mut far = points.clone();
     far[17] += DVec3::X * diagonal;
     let err = onto_surface(&surface, &far, &tris, DEFAULT_MAX_MOVE)
         .err()
@@ -286,6 +232,78 @@ fn curving_a_mesh_made_elsewhere() {
         "{err}"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The chart mesh `mesh` as read back (`points`, `tris`) put onto the
+/// surface: nothing moves, the faces and hard edges are the mesher's, and
+/// raised to P2 every node is on the surface.
+fn put_back_unmoved(surface: &Surface, mesh: &SurfaceMesh, points: &[DVec3], tris: &[[u32; 3]]) {
+    let diagonal = surface.net().bbox_diagonal();
+    let onto = onto_surface(surface, points, tris, DEFAULT_MAX_MOVE).unwrap();
+    assert!(
+        onto.largest_move <= 1e-10 * diagonal,
+        "moved {:e}",
+        onto.largest_move
+    );
+    assert_eq!(onto.mesh.faces, mesh.faces);
+    check_hard_edges(
+        surface,
+        &mesh.hard_edges,
+        &mesh.hard_edge_curves,
+        &onto.mesh.hard_edges,
+    );
+    let curved = onto.mesh.raise_order(surface, 2).unwrap();
+    check_on_surface("fandisk", surface, &curved);
+}
+
+/// A copy of `points` perturbed by 1e-4 of the diagonal put onto the
+/// surface: moves as large as the perturbation, the hard edges found
+/// again, and raised to P3 every node on the surface and every line node
+/// on its curve.
+fn put_back_from_a_perturbed_copy(
+    surface: &Surface,
+    mesh: &SurfaceMesh,
+    points: &[DVec3],
+    tris: &[[u32; 3]],
+) {
+    let diagonal = surface.net().bbox_diagonal();
+    let bump = 1e-4 * diagonal;
+    let moved: Vec<DVec3> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let s = (i as f64 * 0.618_033_988_7).fract();
+            *p + bump * DVec3::new((7.0 * s).sin(), (11.0 * s).cos(), (13.0 * s).sin())
+                / 3f64.sqrt()
+        })
+        .collect();
+    let onto = onto_surface(surface, &moved, tris, DEFAULT_MAX_MOVE).unwrap();
+    assert!(
+        onto.largest_move <= 2.0 * bump,
+        "moved {:e}",
+        onto.largest_move
+    );
+    check_hard_edges(
+        surface,
+        &mesh.hard_edges,
+        &mesh.hard_edge_curves,
+        &onto.mesh.hard_edges,
+    );
+    let curved = onto.mesh.raise_order(surface, 3).unwrap();
+    check_on_surface("perturbed fandisk", surface, &curved);
+    check_shared_edges("perturbed fandisk", &curved);
+    for (line, &c) in curved.lines.chunks(4).zip(&curved.line_curves) {
+        for &node in line {
+            let snap = LimitCurve::new(surface, c as usize)
+                .unwrap()
+                .closest_point(curved.nodes[node as usize])
+                .unwrap();
+            assert!(
+                snap.distance <= 1e-9 * diagonal,
+                "node {node} off curve {c}"
+            );
+        }
+    }
 }
 
 /// The hard edges found on a mesh put onto the surface are the mesher's,

@@ -191,7 +191,9 @@ fn read_sources(root: &Path, dir: &Path, out: &mut Vec<Source>) {
 }
 
 /// Everything wrong with the layering of `sources` (which hold `lib.rs`),
-/// one message per finding, and which module uses which.
+/// one message per finding, and which module uses which. The findings come
+/// in a fixed order: the list's own, upward uses file by file, sub-module
+/// cycles, then methods added to other modules' types.
 fn check(sources: &[Source]) -> (Vec<String>, BTreeSet<(String, String)>) {
     let lib = &sources
         .iter()
@@ -200,30 +202,66 @@ fn check(sources: &[Source]) -> (Vec<String>, BTreeSet<(String, String)>) {
         .text;
     let mut found = Vec::new();
     let order = layer_list(lib, &mut found);
-    let rank: BTreeMap<&str, usize> = order
-        .iter()
-        .enumerate()
-        .map(|(i, m)| (m.as_str(), i))
-        .collect();
     let declared = declared_modules(lib);
-    for m in &declared {
-        if !rank.contains_key(m.as_str()) {
+    found.extend(list_mismatches(&order, &declared));
+    let reexports = reexports(lib, &declared);
+    let (code, test_only) = library_code(sources);
+    let test_only_file = |module: &[String]| test_only.iter().any(|t| module.starts_with(t));
+    let references = references(&code, &test_only_file, &declared, &reexports);
+    let (uses, upward) = top_level_uses(&references, &order);
+    found.extend(upward);
+    let modules = library_modules(&code, &test_only_file);
+    found.extend(sub_module_cycles(&sub_module_edges(&references, &modules)));
+    found.extend(foreign_impls(&code, &test_only_file));
+    found.dedup();
+    (found, uses)
+}
+
+/// Each file's code below `src/` (lib.rs left out), by path: its module,
+/// and its text with comments, literals and unit tests blanked.
+type Code<'a> = BTreeMap<&'a str, (Vec<String>, String)>;
+
+/// Sub-module uses per parent module: (from, to) → first place.
+type SubModuleEdges = BTreeMap<Vec<String>, BTreeMap<(String, String), String>>;
+
+/// One path in the library's code to a module of the crate, resolved.
+struct Reference {
+    /// Where it is written: "src/file.rs:line".
+    place: String,
+    /// The top-level module it is written in.
+    top: String,
+    /// The module it is written in, inline modules included.
+    module: Vec<String>,
+    /// The absolute module path it leads to.
+    target: Vec<String>,
+    /// The top-level module it reaches (a re-export counts as its module's).
+    used: String,
+}
+
+/// The list's disagreements with lib.rs: declared modules it leaves out,
+/// then names in it that lib.rs declares no module for.
+fn list_mismatches(order: &[String], declared: &BTreeSet<String>) -> Vec<String> {
+    let mut found = Vec::new();
+    for m in declared {
+        if !order.contains(m) {
             found.push(format!(
                 "src/lib.rs: module `{m}` is missing from the layer list"
             ));
         }
     }
-    for m in &order {
+    for m in order {
         if !declared.contains(m) {
             found.push(format!(
                 "src/lib.rs: the layer list names `{m}`, which is no module"
             ));
         }
     }
-    let reexports = reexports(lib, &declared);
-    let mut uses = BTreeSet::new();
+    found
+}
 
-    // Code only, and which file modules exist only for unit tests.
+/// The code of every file but lib.rs, and the file modules that exist only
+/// for unit tests (`#[cfg(test)] mod checks;`): their code is no library's.
+fn library_code(sources: &[Source]) -> (Code<'_>, BTreeSet<Vec<String>>) {
     let mut code = BTreeMap::new();
     let mut test_only = BTreeSet::new();
     for s in sources.iter().filter(|s| s.path != "lib.rs") {
@@ -236,16 +274,33 @@ fn check(sources: &[Source]) -> (Vec<String>, BTreeSet<(String, String)>) {
         }
         code.insert(s.path.as_str(), (module, text));
     }
-    let test_only_file = |module: &[String]| test_only.iter().any(|t| module.starts_with(t));
-    let modules: BTreeSet<Vec<String>> = code
-        .values()
+    (code, test_only)
+}
+
+/// The modules the library's files hold (unit-test files left out): a path
+/// inside a module is a sub-module edge only if it leads to one of these.
+fn library_modules(
+    code: &Code,
+    test_only_file: &dyn Fn(&[String]) -> bool,
+) -> BTreeSet<Vec<String>> {
+    code.values()
         .filter(|(m, _)| !test_only_file(m))
         .map(|(m, _)| m.clone())
-        .collect();
+        .collect()
+}
 
-    // Sub-module uses per parent module: (from, to) → first place.
-    let mut inner: BTreeMap<Vec<String>, BTreeMap<(String, String), String>> = BTreeMap::new();
-    for (path, (module, text)) in &code {
+/// Every path in the library's code that reaches a module of the crate,
+/// file by file in order; paths that climb above the root, or lead to no
+/// module (an item of lib.rs's own that it does not re-export), are left
+/// out.
+fn references(
+    code: &Code,
+    test_only_file: &dyn Fn(&[String]) -> bool,
+    declared: &BTreeSet<String>,
+    reexports: &BTreeMap<String, String>,
+) -> Vec<Reference> {
+    let mut out = Vec::new();
+    for (path, (module, text)) in code {
         if test_only_file(module) {
             continue;
         }
@@ -260,55 +315,103 @@ fn check(sources: &[Source]) -> (Vec<String>, BTreeSet<(String, String)>) {
                     .filter(|(span, _)| span.contains(&at))
                     .map(|(_, name)| name.clone()),
             );
-            let module = &module;
-            let Some(absolute) = resolve(module, &target) else {
+            let Some(absolute) = resolve(&module, &target) else {
                 continue;
             };
-            let Some(first) = absolute.first() else {
+            let Some(used) = top_level_module(&absolute, declared, reexports) else {
                 continue;
             };
-            let used = if declared.contains(first) {
-                first
-            } else if let Some(m) = reexports.get(first) {
-                m
-            } else {
-                continue;
-            };
-            if used != top {
-                uses.insert((top.clone(), used.clone()));
-                if let (Some(&from), Some(&to)) = (rank.get(top.as_str()), rank.get(used.as_str()))
-                {
-                    if to > from {
-                        found.push(format!(
-                            "src/{path}:{line}: `{top}` uses `{used}`, which the layer list \
-                             in src/lib.rs names after it"
-                        ));
-                    }
-                }
-                continue;
-            }
-            // Inside the module: an edge between two children of the
-            // deepest module holding both ends.
-            let common = module
-                .iter()
-                .zip(&absolute)
-                .take_while(|(a, b)| a == b)
-                .count();
-            if module.len() > common && absolute.len() > common {
-                let parent = module[..common].to_vec();
-                let mut child = parent.clone();
-                child.push(absolute[common].clone());
-                if modules.iter().any(|m| m.starts_with(&child)) {
-                    inner
-                        .entry(parent)
-                        .or_default()
-                        .entry((module[common].clone(), absolute[common].clone()))
-                        .or_insert_with(|| format!("src/{path}:{line}"));
-                }
+            out.push(Reference {
+                place: format!("src/{path}:{line}"),
+                top: top.clone(),
+                used: used.clone(),
+                module,
+                target: absolute,
+            });
+        }
+    }
+    out
+}
+
+/// The top-level module an absolute path reaches: its first segment, or
+/// for a name the crate root re-exports (`crate::Surface`), that name's
+/// module. `None` when it reaches no module.
+fn top_level_module<'a>(
+    absolute: &'a [String],
+    declared: &BTreeSet<String>,
+    reexports: &'a BTreeMap<String, String>,
+) -> Option<&'a String> {
+    let first = absolute.first()?;
+    if declared.contains(first) {
+        Some(first)
+    } else {
+        reexports.get(first)
+    }
+}
+
+/// Which top-level module uses which, and a finding for each use of a
+/// module that the layer list names after the user.
+fn top_level_uses(
+    references: &[Reference],
+    order: &[String],
+) -> (BTreeSet<(String, String)>, Vec<String>) {
+    let rank: BTreeMap<&str, usize> = order
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.as_str(), i))
+        .collect();
+    let mut uses = BTreeSet::new();
+    let mut found = Vec::new();
+    for Reference {
+        place, top, used, ..
+    } in references.iter().filter(|r| r.used != r.top)
+    {
+        uses.insert((top.clone(), used.clone()));
+        if let (Some(&from), Some(&to)) = (rank.get(top.as_str()), rank.get(used.as_str())) {
+            if to > from {
+                found.push(format!(
+                    "{place}: `{top}` uses `{used}`, which the layer list \
+                     in src/lib.rs names after it"
+                ));
             }
         }
     }
-    for (parent, edges) in &inner {
+    (uses, found)
+}
+
+/// The uses inside each top-level module, as edges between two children of
+/// the deepest module holding both ends (only children that are modules,
+/// not items), each with the first place it is seen.
+fn sub_module_edges(references: &[Reference], modules: &BTreeSet<Vec<String>>) -> SubModuleEdges {
+    let mut inner = SubModuleEdges::new();
+    for r in references.iter().filter(|r| r.used == r.top) {
+        let (module, absolute) = (&r.module, &r.target);
+        let common = module
+            .iter()
+            .zip(absolute)
+            .take_while(|(a, b)| a == b)
+            .count();
+        if module.len() > common && absolute.len() > common {
+            let parent = module[..common].to_vec();
+            let mut child = parent.clone();
+            child.push(absolute[common].clone());
+            if modules.iter().any(|m| m.starts_with(&child)) {
+                inner
+                    .entry(parent)
+                    .or_default()
+                    .entry((module[common].clone(), absolute[common].clone()))
+                    .or_insert_with(|| r.place.clone());
+            }
+        }
+    }
+    inner
+}
+
+/// A finding for each parent module whose sub-modules use each other in a
+/// cycle, at the place of the cycle's first edge.
+fn sub_module_cycles(inner: &SubModuleEdges) -> Vec<String> {
+    let mut found = Vec::new();
+    for (parent, edges) in inner {
         if let Some(cycle) = find_cycle(edges) {
             let name = |c: &String| format!("`{}::{c}`", parent.join("::"));
             let shown: Vec<String> = cycle.iter().map(name).collect();
@@ -319,17 +422,12 @@ fn check(sources: &[Source]) -> (Vec<String>, BTreeSet<(String, String)>) {
             ));
         }
     }
-    found.extend(foreign_impls(&code, &test_only_file));
-    found.dedup();
-    (found, uses)
+    found
 }
 
 /// Inherent `impl` blocks of a type that another top-level module defines
 /// (and the block's own module does not), with file and line.
-fn foreign_impls(
-    code: &BTreeMap<&str, (Vec<String>, String)>,
-    test_only_file: &dyn Fn(&[String]) -> bool,
-) -> Vec<String> {
+fn foreign_impls(code: &Code, test_only_file: &dyn Fn(&[String]) -> bool) -> Vec<String> {
     let library = || code.iter().filter(|(_, (m, _))| !test_only_file(m));
     let mut defined: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for (_, (module, text)) in library() {

@@ -167,44 +167,7 @@ pub(crate) fn conical_angles(
             if skip[v] {
                 return 0.0;
             }
-            let fan = topo.fan(v);
-            // Sector of each fan triangle: union over soft edges at v.
-            let mut sector: Vec<usize> = (0..fan.len()).collect();
-            fn root(s: &mut [usize], i: usize) -> usize {
-                let mut r = i;
-                while s[r] != r {
-                    r = s[r];
-                }
-                s[i] = r;
-                r
-            }
-            for (i, &t) in fan.iter().enumerate() {
-                for &e in &topo.triangle_edges()[t as usize] {
-                    let [a, b] = topo.edges()[e as usize];
-                    if (a as usize != v && b as usize != v) || features.is_hard_edge(e as usize) {
-                        continue;
-                    }
-                    let [t0, t1] = topo.edge_triangles()[e as usize];
-                    let other = if t0 == t { t1 } else { t0 };
-                    if other == NONE {
-                        continue;
-                    }
-                    if let Some(j) = fan.iter().position(|&f| f == other) {
-                        let (ri, rj) = (root(&mut sector, i), root(&mut sector, j));
-                        sector[ri] = rj;
-                    }
-                }
-            }
-            // The widest pair: the smallest cosine between unit normals.
-            let mut cos: f64 = 1.0;
-            for i in 0..fan.len() {
-                for j in i + 1..fan.len() {
-                    if root(&mut sector, i) == root(&mut sector, j) {
-                        cos = cos.min(normals[fan[i] as usize].dot(normals[fan[j] as usize]));
-                    }
-                }
-            }
-            let mut ca = cos.clamp(-1.0, 1.0).acos();
+            let mut ca = widest_in_sectors(net, v, &normals);
             if kinds[v] == VertexKind::Crease {
                 if let [a, b] = features.hard_neighbours(topo, v)[..] {
                     let p = points[v];
@@ -212,13 +175,60 @@ pub(crate) fn conical_angles(
                 }
             }
             if !bend.is_empty() && hard[v] > 0 {
-                for &t in fan {
+                for &t in topo.fan(v) {
                     ca = ca.max(bend[t as usize]);
                 }
             }
             ca.to_degrees()
         })
         .collect())
+}
+
+/// The widest angle (radians) between the unit `normals` of two triangles
+/// at vertex v in one smooth sector (triangles joined around v by soft
+/// edges).
+fn widest_in_sectors(net: &ControlNet, v: usize, normals: &[DVec3]) -> f64 {
+    let (topo, features) = (net.topology(), net.features());
+    let fan = topo.fan(v);
+    // Sector of each fan triangle: union over soft edges at v.
+    let mut sector: Vec<usize> = (0..fan.len()).collect();
+    for (i, &t) in fan.iter().enumerate() {
+        for &e in &topo.triangle_edges()[t as usize] {
+            let [a, b] = topo.edges()[e as usize];
+            if (a as usize != v && b as usize != v) || features.is_hard_edge(e as usize) {
+                continue;
+            }
+            let [t0, t1] = topo.edge_triangles()[e as usize];
+            let other = if t0 == t { t1 } else { t0 };
+            if other == NONE {
+                continue;
+            }
+            if let Some(j) = fan.iter().position(|&f| f == other) {
+                let (ri, rj) = (root(&mut sector, i), root(&mut sector, j));
+                sector[ri] = rj;
+            }
+        }
+    }
+    // The widest pair: the smallest cosine between unit normals.
+    let mut cos: f64 = 1.0;
+    for i in 0..fan.len() {
+        for j in i + 1..fan.len() {
+            if root(&mut sector, i) == root(&mut sector, j) {
+                cos = cos.min(normals[fan[i] as usize].dot(normals[fan[j] as usize]));
+            }
+        }
+    }
+    cos.clamp(-1.0, 1.0).acos()
+}
+
+/// The root of i's set in the union-find array `s`, pointing i at it.
+fn root(s: &mut [usize], i: usize) -> usize {
+    let mut r = i;
+    while s[r] != r {
+        r = s[r];
+    }
+    s[i] = r;
+    r
 }
 
 /// How far every vertex's neighbourhood is from the limit surface, model

@@ -236,71 +236,89 @@ impl<'a> Adapter<'a> {
         };
         let mut counts = vec![count(&level)];
         for _ in 0..self.levels {
-            let current = level.net.triangles().len();
-            if 4 * current > self.max_triangles {
-                return Err(Error::OverBudget {
-                    needed: (4 * current) as f64,
-                    limit: self.max_triangles,
-                    message: format!(
-                        "the next level could reach {} triangles, over the limit of {}",
-                        4 * current,
-                        self.max_triangles
-                    ),
-                });
-            }
-            let mut flat: Vec<bool> = match self.angle {
-                Some(a) => classify::conical_angles(&level.net, &level.charts, &level.dead, limit)?
-                    .into_iter()
-                    .map(|ca| ca < a)
-                    .collect(),
-                None => vec![true; level.dead.len()],
-            };
-            // Under a tolerance a vertex must itself be within it to die
-            // (Liu & Kondo ask only its neighbours to be flat), or the
-            // frozen dead vertices could stay farther than promised.
-            let mut within = vec![true; flat.len()];
-            if let Some((surface, tol)) = tolerance {
-                let errors = classify::surface_errors(&level.net, &level.charts, surface)?;
-                for ((f, w), e) in flat.iter_mut().zip(&mut within).zip(errors) {
-                    *w = e <= tol;
-                    *f &= *w;
-                }
-            }
-            for (f, &d) in flat.iter_mut().zip(&level.dead) {
-                *f |= d;
-            }
-            let dead = classify::next_dead(level.net.topology(), &level.dead, &flat, &within);
-            let mut parts = split::subdivide(&level, &dead);
-            if self.realign {
-                realign::realign(&mut parts);
-            }
-            level = parts.into_level()?;
+            level = self.next_level(&level, limit, tolerance)?;
             counts.push(count(&level));
         }
-        let mut params = vec![
-            SurfacePoint {
-                tri: 0,
-                v: 0.0,
-                w: 0.0
-            };
-            level.net.points().len()
-        ];
-        for (tri, chart) in level.net.triangles().iter().zip(&level.charts) {
-            for k in 0..3 {
-                params[tri[k] as usize] = SurfacePoint {
-                    tri: chart.tri,
-                    v: chart.q[k].x,
-                    w: chart.q[k].y,
-                };
-            }
-        }
         Ok(AdaptiveMesh {
+            params: vertex_params(&level),
             net: level.net,
-            params,
             dead: level.dead,
             counts,
         })
     }
+
+    /// One level on: the vertices that die (flat, or dead already), and
+    /// the triangles split around the living ones. A level that could go
+    /// over the triangle budget is refused first.
+    fn next_level(
+        &self,
+        level: &Level,
+        limit: Option<&Surface>,
+        tolerance: Option<(&Surface, f64)>,
+    ) -> Result<Level> {
+        let current = level.net.triangles().len();
+        if 4 * current > self.max_triangles {
+            return Err(Error::OverBudget {
+                needed: (4 * current) as f64,
+                limit: self.max_triangles,
+                message: format!(
+                    "the next level could reach {} triangles, over the limit of {}",
+                    4 * current,
+                    self.max_triangles
+                ),
+            });
+        }
+        let mut flat: Vec<bool> = match self.angle {
+            Some(a) => classify::conical_angles(&level.net, &level.charts, &level.dead, limit)?
+                .into_iter()
+                .map(|ca| ca < a)
+                .collect(),
+            None => vec![true; level.dead.len()],
+        };
+        // Under a tolerance a vertex must itself be within it to die
+        // (Liu & Kondo ask only its neighbours to be flat), or the
+        // frozen dead vertices could stay farther than promised.
+        let mut within = vec![true; flat.len()];
+        if let Some((surface, tol)) = tolerance {
+            let errors = classify::surface_errors(&level.net, &level.charts, surface)?;
+            for ((f, w), e) in flat.iter_mut().zip(&mut within).zip(errors) {
+                *w = e <= tol;
+                *f &= *w;
+            }
+        }
+        for (f, &d) in flat.iter_mut().zip(&level.dead) {
+            *f |= d;
+        }
+        let dead = classify::next_dead(level.net.topology(), &level.dead, &flat, &within);
+        let mut parts = split::subdivide(level, &dead);
+        if self.realign {
+            realign::realign(&mut parts);
+        }
+        parts.into_level()
+    }
+}
+
+/// Each vertex of the last level as a point of the original net: a corner
+/// of the face chart of a triangle holding it.
+fn vertex_params(level: &Level) -> Vec<SurfacePoint> {
+    let mut params = vec![
+        SurfacePoint {
+            tri: 0,
+            v: 0.0,
+            w: 0.0
+        };
+        level.net.points().len()
+    ];
+    for (tri, chart) in level.net.triangles().iter().zip(&level.charts) {
+        for k in 0..3 {
+            params[tri[k] as usize] = SurfacePoint {
+                tri: chart.tri,
+                v: chart.q[k].x,
+                w: chart.q[k].y,
+            };
+        }
+    }
+    params
 }
 
 /// Whether `surface` is the Loop limit surface of `net`: approximating,

@@ -21,7 +21,7 @@ use super::{FaceChart, Level, Parts};
 use crate::geometry::max_cosine;
 use crate::refine::subdivide_points;
 use crate::topology::NONE;
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 /// Subdivides `level` once, `dead` being the flags of its NLFC.
 pub(crate) fn subdivide(level: &Level, dead: &[bool]) -> Parts {
@@ -42,7 +42,40 @@ pub(crate) fn subdivide(level: &Level, dead: &[bool]) -> Parts {
             next_dead.push(da || db);
         }
     }
+    let (tris, charts, fresh) = split_triangles(level, &points, &edge_vertex);
+    // Hard edges: both halves of a split one, the whole of a dead one.
+    let mut hard = Vec::new();
+    for (e, &[a, b]) in topo.edges().iter().enumerate() {
+        if features.is_hard_edge(e) && !topo.is_boundary_edge(e) {
+            match edge_vertex[e] {
+                NONE => hard.push([a, b]),
+                m => hard.extend([[a, m], [m, b]]),
+            }
+        }
+    }
+    let corners: Vec<u32> = (0..nv as u32)
+        .filter(|&v| features.is_tagged_vertex(v as usize))
+        .collect();
+    Parts {
+        points,
+        tris,
+        charts,
+        fresh,
+        dead: next_dead,
+        hard,
+        corners,
+    }
+}
 
+/// Every triangle of `level` split by its edges' new vertices
+/// (`edge_vertex`, `NONE` for a dead edge) as the module doc describes:
+/// the triangles, their charts, and whether each chart is new.
+fn split_triangles(
+    level: &Level,
+    points: &[DVec3],
+    edge_vertex: &[u32],
+) -> (Vec<[u32; 3]>, Vec<FaceChart>, Vec<bool>) {
+    let topo = level.net.topology();
     let mut tris = Vec::with_capacity(4 * topo.num_triangles());
     let mut charts = Vec::with_capacity(4 * topo.num_triangles());
     let mut fresh = Vec::with_capacity(4 * topo.num_triangles());
@@ -90,27 +123,5 @@ pub(crate) fn subdivide(level: &Level, dead: &[bool]) -> Parts {
             _ => push(c, q, chart),
         }
     }
-
-    // Hard edges: both halves of a split one, the whole of a dead one.
-    let mut hard = Vec::new();
-    for (e, &[a, b]) in topo.edges().iter().enumerate() {
-        if features.is_hard_edge(e) && !topo.is_boundary_edge(e) {
-            match edge_vertex[e] {
-                NONE => hard.push([a, b]),
-                m => hard.extend([[a, m], [m, b]]),
-            }
-        }
-    }
-    let corners: Vec<u32> = (0..nv as u32)
-        .filter(|&v| features.is_tagged_vertex(v as usize))
-        .collect();
-    Parts {
-        points,
-        tris,
-        charts,
-        fresh,
-        dead: next_dead,
-        hard,
-        corners,
-    }
+    (tris, charts, fresh)
 }

@@ -109,7 +109,6 @@ impl<'s> LimitCurve<'s> {
     /// combination of (the rings of its two end vertices), sampled and
     /// solved for, and not split; its bound is the weaker one then.
     pub fn closest_point_within(&self, p: DVec3, tolerance: f64) -> Result<CurveSnap> {
-        let c = self.curve;
         if !p.is_finite() {
             return Err(Error::InvalidArgument(format!(
                 "point {:?} is not finite",
@@ -128,70 +127,18 @@ impl<'s> LimitCurve<'s> {
             distance: f64::INFINITY,
             lower_bound: 0.0,
         };
-        let consider = |t: f64, best: &mut CurveSnap| -> Result<()> {
-            let (t, x) = self.descend(p, t)?;
-            let d = (x - p).length();
-            if d < best.distance {
-                *best = CurveSnap {
-                    t,
-                    point: x,
-                    distance: d,
-                    lower_bound: 0.0,
-                };
-            }
-            Ok(())
-        };
-        // Pieces by lower bound, nearest first: a polynomial segment's
-        // sub-interval with its Bézier points, or a whole dart segment
-        // (bounded by its control hull, sampled when it can matter).
-        // Distances are non-negative, so their bits order like them.
-        let mut heap = BinaryHeap::new();
-        let mut pieces = Vec::new();
-        type Piece = (usize, f64, f64, Option<[DVec3; 4]>);
-        fn push(
-            heap: &mut BinaryHeap<Reverse<(u64, usize)>>,
-            pieces: &mut Vec<Piece>,
-            bound: f64,
-            piece: Piece,
-        ) {
-            pieces.push(piece);
-            heap.push(Reverse((bound.to_bits(), pieces.len() - 1)));
-        }
-        for k in 0..c.len() {
-            if self.near_dart(k) {
-                let bound = box_distance(p, &self.segment_support(k));
-                push(&mut heap, &mut pieces, bound, (k, 0.0, 1.0, None));
-            } else {
-                let b = self.bezier_of_segment(k);
-                push(
-                    &mut heap,
-                    &mut pieces,
-                    box_distance(p, &b),
-                    (k, 0.0, 1.0, Some(b)),
-                );
-            }
-        }
+        let mut pieces = self.pieces(p);
         let mut closed_bound = f64::INFINITY;
         let mut splits = 0;
-        while let Some(Reverse((bits, i))) = heap.pop() {
-            let bound = f64::from_bits(bits);
+        while let Some((bound, (k, s0, s1, b))) = pieces.pop() {
             if bound >= best.distance - tol {
                 // The nearest remaining piece closes, and all after it.
                 closed_bound = closed_bound.min(bound);
                 break;
             }
-            let (k, s0, s1, b) = pieces[i];
             let Some(b) = b else {
                 // Sampled, then solved from the nearest sample only.
-                let mut nearest = (f64::INFINITY, k as f64);
-                for j in 0..=16 {
-                    let t = k as f64 + j as f64 / 16.0;
-                    let d = (self.eval(t)?.x - p).length();
-                    if d < nearest.0 {
-                        nearest = (d, t);
-                    }
-                }
-                consider(nearest.1, &mut best)?;
+                self.consider(p, self.nearest_sample(k, p)?, &mut best)?;
                 closed_bound = closed_bound.min(bound);
                 continue;
             };
@@ -217,24 +164,61 @@ impl<'s> LimitCurve<'s> {
                 continue;
             }
             splits += 1;
-            consider(k as f64 + 0.5 * (s0 + s1), &mut best)?;
+            self.consider(p, k as f64 + 0.5 * (s0 + s1), &mut best)?;
             let (l, r) = split_bezier(&b);
             let m = 0.5 * (s0 + s1);
-            push(
-                &mut heap,
-                &mut pieces,
-                box_distance(p, &l),
-                (k, s0, m, Some(l)),
-            );
-            push(
-                &mut heap,
-                &mut pieces,
-                box_distance(p, &r),
-                (k, m, s1, Some(r)),
-            );
+            pieces.push(box_distance(p, &l), (k, s0, m, Some(l)));
+            pieces.push(box_distance(p, &r), (k, m, s1, Some(r)));
         }
         best.lower_bound = closed_bound.min(best.distance);
         Ok(best)
+    }
+
+    /// Every segment as a piece to search for the point nearest p: a
+    /// polynomial one with its Bézier points, one next to a dart tip
+    /// bounded by its control hull.
+    fn pieces(&self, p: DVec3) -> Pieces {
+        let mut pieces = Pieces::default();
+        for k in 0..self.curve.len() {
+            if self.near_dart(k) {
+                let bound = box_distance(p, &self.segment_support(k));
+                pieces.push(bound, (k, 0.0, 1.0, None));
+            } else {
+                let b = self.bezier_of_segment(k);
+                pieces.push(box_distance(p, &b), (k, 0.0, 1.0, Some(b)));
+            }
+        }
+        pieces
+    }
+
+    /// The parameter of segment k's sample nearest p, of 17 evenly spaced
+    /// (the first of equals).
+    fn nearest_sample(&self, k: usize, p: DVec3) -> Result<f64> {
+        let mut nearest = (f64::INFINITY, k as f64);
+        for j in 0..=16 {
+            let t = k as f64 + j as f64 / 16.0;
+            let d = (self.eval(t)?.x - p).length();
+            if d < nearest.0 {
+                nearest = (d, t);
+            }
+        }
+        Ok(nearest.1)
+    }
+
+    /// Local Newton towards p from parameter t; its end replaces `best`
+    /// if nearer.
+    fn consider(&self, p: DVec3, t: f64, best: &mut CurveSnap) -> Result<()> {
+        let (t, x) = self.descend(p, t)?;
+        let d = (x - p).length();
+        if d < best.distance {
+            *best = CurveSnap {
+                t,
+                point: x,
+                distance: d,
+                lower_bound: 0.0,
+            };
+        }
+        Ok(())
     }
 
     /// The cubic Bézier points of B-spline segment k (displacement added).
@@ -283,6 +267,33 @@ impl<'s> LimitCurve<'s> {
             out = out.iter().flat_map(|&x| [x + da, x + db]).collect();
         }
         out
+    }
+}
+
+/// A piece of a curve to search: segment k over [s0, s1], with its cubic
+/// Bézier points, or a whole dart segment (`None`: bounded by its control
+/// hull, sampled when it can matter).
+type Piece = (usize, f64, f64, Option<[DVec3; 4]>);
+
+/// The pieces still to search, nearest lower bound first. Distances are
+/// non-negative, so their bits order like them.
+#[derive(Default)]
+struct Pieces {
+    heap: BinaryHeap<Reverse<(u64, usize)>>,
+    pieces: Vec<Piece>,
+}
+
+impl Pieces {
+    fn push(&mut self, bound: f64, piece: Piece) {
+        self.pieces.push(piece);
+        self.heap
+            .push(Reverse((bound.to_bits(), self.pieces.len() - 1)));
+    }
+
+    /// The piece of least bound, with its bound.
+    fn pop(&mut self) -> Option<(f64, Piece)> {
+        let Reverse((bits, i)) = self.heap.pop()?;
+        Some((f64::from_bits(bits), self.pieces[i]))
     }
 }
 

@@ -160,20 +160,7 @@ pub fn eval_coefficients(c: &[DVec3; 15], v: f64, w: f64) -> [DVec3; 6] {
     let (v2, vw, w2) = (v * v, v * w, w * w);
     let (v3, v2w, vw2, w3) = (v2 * v, v2 * w, v * w2, w2 * w);
     [
-        c[0] + c[1] * v
-            + c[2] * w
-            + c[3] * v2
-            + c[4] * vw
-            + c[5] * w2
-            + c[6] * v3
-            + c[7] * v2w
-            + c[8] * vw2
-            + c[9] * w3
-            + c[10] * (v2 * v2)
-            + c[11] * (v3 * w)
-            + c[12] * (v2 * w2)
-            + c[13] * (v * w3)
-            + c[14] * (w2 * w2),
+        eval_point(c, v, w),
         c[1] + c[3] * (2.0 * v)
             + c[4] * w
             + c[6] * (3.0 * v2)

@@ -469,38 +469,7 @@ impl Key {
             let _ = features.tag_vertex(v);
         }
         let [lp, lq] = self.corner;
-        // S: one subdivision step of the local net as a matrix, and the limit
-        // masks, three basis vectors at a time (x, y, z).
-        let fine = topo.num_vertices() + topo.num_edges();
-        let mut s = vec![0.0; fine * n0];
-        // Limit masks of c, p and q (rows of the limit operator).
-        let mut limit_rows = vec![vec![0.0; n0]; 3];
-        for first in (0..n0).step_by(3) {
-            let basis: Vec<DVec3> = (0..n0)
-                .map(|j| {
-                    let mut e = DVec3::ZERO;
-                    if j >= first && j < first + 3 {
-                        e[j - first] = 1.0;
-                    }
-                    e
-                })
-                .collect();
-            for (i, x) in subdivide_points(topo, &features, &basis).iter().enumerate() {
-                for d in 0..3 {
-                    if first + d < n0 {
-                        s[i * n0 + first + d] = x[d];
-                    }
-                }
-            }
-            let limits = limit_positions(topo, &features, &basis);
-            for (row, v) in limit_rows.iter_mut().zip([0, lp, lq]) {
-                for d in 0..3 {
-                    if first + d < n0 {
-                        row[first + d] = limits[v as usize][d];
-                    }
-                }
-            }
-        }
+        let (s, limit_rows) = subdivision_matrix(topo, &features, [0, lp, lq]);
         let fine_topo = topo.refined();
         let fine_features = features.refined(topo);
         let mid =
@@ -509,18 +478,7 @@ impl Key {
         let fine_n = neighbourhood(&fine_topo, 0, mid(0, lp), mid(0, lq));
         assert_eq!(coarse_n.len(), fine_n.len(), "neighbourhoods of one shape");
         let size = coarse_n.len();
-        // Rows of S restricted to the neighbourhood; the rules never read
-        // outside it (checked).
-        let restrict = |row: &[f64]| -> Vec<f64> {
-            let picked: Vec<f64> = coarse_n.iter().map(|&j| row[j as usize]).collect();
-            let outside = row.iter().map(|w| w.abs()).sum::<f64>()
-                - picked.iter().map(|w| w.abs()).sum::<f64>();
-            assert!(
-                outside.abs() < 1e-12,
-                "a rule reads outside the neighbourhood {coarse_n:?}: {row:?}"
-            );
-            picked
-        };
+        let restrict = |row: &[f64]| restrict(row, &coarse_n);
         let a: Vec<f64> = fine_n
             .iter()
             .flat_map(|&i| restrict(&s[i as usize * n0..(i as usize + 1) * n0]))
@@ -553,17 +511,7 @@ impl Key {
         let band_bezier = std::array::from_fn(|k| box_spline::bernstein_rows(&band[k], size));
         // Limit mask of c: the left eigenvector of A for eigenvalue 1.
         let limit = restrict(&limit_rows[0]);
-        let mut deflated = a;
-        for i in 0..size {
-            for j in 0..size {
-                deflated[i * size + j] -= limit[j];
-            }
-        }
-        let mut powers = vec![deflated];
-        for j in 1..POWERS {
-            let last = &powers[j - 1];
-            powers.push(matmul(last, last, size));
-        }
+        let powers = deflated_powers(a, &limit, size);
         // D^32 drives the tangent iteration: high enough to converge in a
         // few hundred steps even at valence 80, low enough that no mode of
         // the sector (eigenvalues down to 1/4) underflows between the
@@ -583,6 +531,78 @@ impl Key {
             tangents,
         }
     }
+}
+
+/// S, one subdivision step of the local net as a row-major matrix (fine
+/// vertices by coarse ones), and the limit masks of `corners` (c, p and q;
+/// rows of the limit operator): both found by subdividing the basis
+/// vectors, three at a time (x, y, z).
+fn subdivision_matrix(
+    topo: &Topology,
+    features: &Features,
+    corners: [u32; 3],
+) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let n0 = topo.num_vertices();
+    let fine = topo.num_vertices() + topo.num_edges();
+    let mut s = vec![0.0; fine * n0];
+    let mut limit_rows = vec![vec![0.0; n0]; 3];
+    for first in (0..n0).step_by(3) {
+        let basis: Vec<DVec3> = (0..n0)
+            .map(|j| {
+                let mut e = DVec3::ZERO;
+                if j >= first && j < first + 3 {
+                    e[j - first] = 1.0;
+                }
+                e
+            })
+            .collect();
+        for (i, x) in subdivide_points(topo, features, &basis).iter().enumerate() {
+            for d in 0..3 {
+                if first + d < n0 {
+                    s[i * n0 + first + d] = x[d];
+                }
+            }
+        }
+        let limits = limit_positions(topo, features, &basis);
+        for (row, v) in limit_rows.iter_mut().zip(corners) {
+            for d in 0..3 {
+                if first + d < n0 {
+                    row[first + d] = limits[v as usize][d];
+                }
+            }
+        }
+    }
+    (s, limit_rows)
+}
+
+/// A row of S restricted to the neighbourhood `coarse_n`; the rules never
+/// read outside it (checked).
+fn restrict(row: &[f64], coarse_n: &[u32]) -> Vec<f64> {
+    let picked: Vec<f64> = coarse_n.iter().map(|&j| row[j as usize]).collect();
+    let outside =
+        row.iter().map(|w| w.abs()).sum::<f64>() - picked.iter().map(|w| w.abs()).sum::<f64>();
+    assert!(
+        outside.abs() < 1e-12,
+        "a rule reads outside the neighbourhood {coarse_n:?}: {row:?}"
+    );
+    picked
+}
+
+/// D = A − 1·limit (A deflated of its eigenvalue 1) and its powers D^(2^j)
+/// for j below [`POWERS`], by repeated squaring.
+fn deflated_powers(a: Vec<f64>, limit: &[f64], size: usize) -> Vec<Vec<f64>> {
+    let mut deflated = a;
+    for i in 0..size {
+        for j in 0..size {
+            deflated[i * size + j] -= limit[j];
+        }
+    }
+    let mut powers = vec![deflated];
+    for j in 1..POWERS {
+        let last = &powers[j - 1];
+        powers.push(matmul(last, last, size));
+    }
+    powers
 }
 
 /// Tangent masks of the sector (c, p, q) at c: a basis of the row space that

@@ -11,14 +11,14 @@
 //! (outward-normal) triangles, no zero-area triangle and no duplicate
 //! vertex; all but `open-disk` are closed. Indices are 0-based.
 //!
-//! [`cad`] holds a different kind of net: analytic shapes tessellated as a
-//! CAD exporter writes STL (slivers, fans, vertices on the true surface),
-//! each with its exact surface, to measure surrogates against the truth.
+//! [`crate::cad`] holds a different kind of net: analytic shapes
+//! tessellated as a CAD exporter writes STL (slivers, fans, vertices on the
+//! true surface), each with its exact surface, to measure surrogates
+//! against the truth; it sits above the surface, which it measures.
 
 use glam::DVec3;
 
 mod bicone;
-pub mod cad;
 mod cube;
 mod disk;
 mod sphere;

@@ -93,6 +93,15 @@ impl LagrangeMesh {
     /// formats' signed 32-bit physical tags, and each corner node listed
     /// once (a corner is one gmsh point entity holding its one node).
     pub fn validate(&self) -> Result<()> {
+        self.check_sizes()?;
+        self.check_finite()?;
+        self.check_indices()?;
+        self.check_ids()?;
+        self.check_corners()
+    }
+
+    /// The order, the node count, and every array's length.
+    fn check_sizes(&self) -> Result<()> {
         let bad = |message: String| Err(Error::InvalidArgument(message));
         if !(1..=MAX_LAGRANGE_ORDER).contains(&self.order) {
             return bad(format!(
@@ -131,6 +140,12 @@ impl LagrangeMesh {
                 self.params.len()
             ));
         }
+        Ok(())
+    }
+
+    /// Finite coordinates and parameters.
+    fn check_finite(&self) -> Result<()> {
+        let bad = |message: String| Err(Error::InvalidArgument(message));
         if let Some(i) = self.nodes.iter().position(|p| !p.is_finite()) {
             return bad(format!(
                 "node {i} {:?} is not finite",
@@ -147,29 +162,49 @@ impl LagrangeMesh {
                 self.params[i]
             ));
         }
+        Ok(())
+    }
+
+    /// Every element's node indices in range.
+    fn check_indices(&self) -> Result<()> {
+        let n = self.nodes.len();
+        let (npt, npl) = (self.nodes_per_triangle(), self.nodes_per_line());
         for (kind, nodes, per) in [
             ("triangle", &self.triangles, npt),
             ("line", &self.lines, npl),
         ] {
             if let Some(k) = nodes.iter().position(|&i| i as usize >= n) {
                 let e = k / per;
-                return bad(format!(
+                return Err(Error::InvalidArgument(format!(
                     "{kind} {e} {:?} refers to node {}, but there are only {n} nodes",
                     &nodes[e * per..(e + 1) * per],
                     nodes[k]
-                ));
+                )));
             }
         }
+        Ok(())
+    }
+
+    /// Face and curve ids that fit a gmsh physical tag.
+    fn check_ids(&self) -> Result<()> {
+        let bad = |message: String| Err(Error::InvalidArgument(message));
         // Physical tags are id + 1 and C ints.
-        let too_big = |id: u32| id >= i32::MAX as u32;
         for (kind, ids) in [("face", &self.faces), ("curve", &self.line_curves)] {
-            if let Some(k) = ids.iter().position(|&id| too_big(id)) {
+            if let Some(k) = ids.iter().position(|&id| too_big_for_a_tag(id)) {
                 return bad(format!(
                     "{kind} id {} (entry {k}) is too large for a gmsh physical tag",
                     ids[k]
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// Each corner a node, its id fit for a physical tag, and no node a
+    /// corner twice.
+    fn check_corners(&self) -> Result<()> {
+        let bad = |message: String| Err(Error::InvalidArgument(message));
+        let n = self.nodes.len();
         let mut seen = std::collections::HashMap::with_capacity(self.corners.len());
         for (k, &(node, id)) in self.corners.iter().enumerate() {
             if node as usize >= n {
@@ -177,7 +212,7 @@ impl LagrangeMesh {
                     "corner entry {k} is node {node}, but there are only {n} nodes"
                 ));
             }
-            if too_big(id) {
+            if too_big_for_a_tag(id) {
                 return bad(format!(
                     "corner id {id} (entry {k}) is too large for a gmsh physical tag"
                 ));
@@ -190,6 +225,11 @@ impl LagrangeMesh {
         }
         Ok(())
     }
+}
+
+/// Whether id + 1 (the physical tag, a C int) overflows.
+fn too_big_for_a_tag(id: u32) -> bool {
+    id >= i32::MAX as u32
 }
 
 /// Triangle orders by node count: `Some(k)` when `n` is

@@ -4,6 +4,7 @@
 //! [`GRADING`]. Each control edge then takes the finer level of its two
 //! triangles (or more, when its own chords need it).
 
+use crate::parameters::INTERIOR_SAMPLES;
 use crate::surface::Surface;
 use crate::topology::{Topology, NONE};
 use crate::Result;
@@ -14,31 +15,14 @@ use glam::DVec3;
 /// two segments to one.
 pub(crate) const GRADING: f64 = 2.0;
 
-/// Interior sample parameters for the curvature estimate: the centroid,
-/// points towards each corner and each side (curvature peaks next to
-/// irregular vertices), none exactly on the boundary (special corners
-/// report no derivatives).
-pub(crate) const SAMPLES: [(f64, f64); 10] = [
-    (1.0 / 3.0, 1.0 / 3.0),
-    (0.05, 0.05),
-    (0.9, 0.05),
-    (0.05, 0.9),
-    (0.45, 0.05),
-    (0.45, 0.5),
-    (0.05, 0.45),
-    (0.2, 0.2),
-    (0.6, 0.2),
-    (0.2, 0.6),
-];
-
 /// Per control triangle: an estimate of the chord error of its level-1
 /// lattice (the control triangle itself), from the largest second
 /// derivative along the lattice directions (1,0), (0,1) and (−1,1). The
 /// lattice of level N then deviates by about `bend / N²`. The estimate only
-/// seeds the level; the chord error is measured afterwards and enforced.
+/// starts the level; the chord error is measured afterwards and enforced.
 pub(crate) fn bend(surface: &Surface, t: usize) -> Result<f64> {
     let mut worst: f64 = 0.0;
-    for (v, w) in SAMPLES {
+    for (v, w) in INTERIOR_SAMPLES {
         let e = surface.eval(t, v, w)?;
         // Only the normal part bends chords away from the surface (the
         // tangential part reparametrises it).

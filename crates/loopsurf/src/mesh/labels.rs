@@ -111,69 +111,8 @@ pub fn curve_edges(
     params: &[SurfacePoint],
     triangles: &[[u32; 3]],
 ) -> Result<CurveEdges> {
-    let net = surface.net();
-    for (i, p) in params.iter().enumerate() {
-        surface
-            .validate(p.tri as usize, p.v, p.w)
-            .map_err(|e| match e {
-                Error::InvalidArgument(m) => Error::InvalidArgument(format!("vertex {i}: {m}")),
-                other => other,
-            })?;
-    }
-    for (t, tri) in triangles.iter().enumerate() {
-        if let Some(&i) = tri.iter().find(|&&i| i as usize >= params.len()) {
-            return Err(Error::InvalidArgument(format!(
-                "triangle {t} {tri:?} refers to vertex {i}, but there are {} vertices",
-                params.len()
-            )));
-        }
-    }
-    let model = surface.model();
-    let mut edge_pos = vec![NONE; net.topology().num_edges()];
-    for curve in model.curves() {
-        for (k, &e) in curve.edges.iter().enumerate() {
-            edge_pos[e as usize] = k as u32;
-        }
-    }
-    // Every (curve, t, vertex) a vertex lies at: on a hard control edge,
-    // or at a chain vertex (a corner on several curves; a closed curve's
-    // first vertex at both t = 0 and t = n).
-    let mut on_curve: Vec<(u32, f64, u32)> = Vec::new();
-    for (i, &p) in params.iter().enumerate() {
-        match place_of(net, p) {
-            place @ Place::Edge(e, _) => {
-                if let Some(c) = model.curve_of_edge(e as usize) {
-                    let pos = edge_pos[e as usize] as usize;
-                    let from = model.curves()[c as usize].chain[pos];
-                    on_curve.push((c, curve_param(net, place, e, pos, from), i as u32));
-                }
-            }
-            Place::Vertex(x) => {
-                let topo = net.topology();
-                let mut curves: Vec<u32> = topo
-                    .ring(x as usize)
-                    .iter()
-                    .filter_map(|&y| topo.find_edge(x, y))
-                    .filter_map(|e| model.curve_of_edge(e))
-                    .collect();
-                curves.sort_unstable();
-                curves.dedup();
-                for c in curves {
-                    let chain = &model.curves()[c as usize].chain;
-                    for (j, _) in chain.iter().enumerate().filter(|(_, &v)| v == x) {
-                        on_curve.push((c, j as f64, i as u32));
-                    }
-                }
-            }
-            Place::Inside => {}
-        }
-    }
-    on_curve.sort_by(|x, y| {
-        (x.0, x.1, x.2)
-            .partial_cmp(&(y.0, y.1, y.2))
-            .expect("finite")
-    });
-    on_curve.dedup();
+    check_mesh(surface, params, triangles)?;
+    let on_curve = vertices_on_curves(surface, params);
     let mut joined = std::collections::HashSet::with_capacity(3 * triangles.len());
     for tri in triangles {
         for k in 0..3 {
@@ -184,6 +123,7 @@ pub fn curve_edges(
     // Along each curve, neighbours in t joined by an output edge are its
     // edges (so an output edge may span several control edges); around a
     // closed curve, also its last and first vertex.
+    let model = surface.model();
     let mut found: Vec<(u32, f64, [u32; 2], [f64; 2])> = Vec::new();
     for run in on_curve.chunk_by(|x, y| x.0 == y.0) {
         let c = run[0].0;
@@ -207,4 +147,83 @@ pub fn curve_edges(
         curves: found.iter().map(|f| f.0).collect(),
         params: found.iter().map(|f| f.3).collect(),
     })
+}
+
+/// Refuses a parameter off the surface and an index past the vertices,
+/// naming the vertex or triangle.
+fn check_mesh(surface: &Surface, params: &[SurfacePoint], triangles: &[[u32; 3]]) -> Result<()> {
+    for (i, p) in params.iter().enumerate() {
+        surface
+            .validate(p.tri as usize, p.v, p.w)
+            .map_err(|e| match e {
+                Error::InvalidArgument(m) => Error::InvalidArgument(format!("vertex {i}: {m}")),
+                other => other,
+            })?;
+    }
+    for (t, tri) in triangles.iter().enumerate() {
+        if let Some(&i) = tri.iter().find(|&&i| i as usize >= params.len()) {
+            return Err(Error::InvalidArgument(format!(
+                "triangle {t} {tri:?} refers to vertex {i}, but there are {} vertices",
+                params.len()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Every (curve, t, vertex) a vertex lies at, sorted and without repeats:
+/// on a hard control edge, or at a chain vertex (a corner on several
+/// curves; a closed curve's first vertex at both t = 0 and t = n).
+fn vertices_on_curves(surface: &Surface, params: &[SurfacePoint]) -> Vec<(u32, f64, u32)> {
+    let net = surface.net();
+    let model = surface.model();
+    let mut edge_pos = vec![NONE; net.topology().num_edges()];
+    for curve in model.curves() {
+        for (k, &e) in curve.edges.iter().enumerate() {
+            edge_pos[e as usize] = k as u32;
+        }
+    }
+    let mut on_curve: Vec<(u32, f64, u32)> = Vec::new();
+    for (i, &p) in params.iter().enumerate() {
+        match place_of(net, p) {
+            place @ Place::Edge(e, _) => {
+                if let Some(c) = model.curve_of_edge(e as usize) {
+                    let pos = edge_pos[e as usize] as usize;
+                    let from = model.curves()[c as usize].chain[pos];
+                    on_curve.push((c, curve_param(net, place, e, pos, from), i as u32));
+                }
+            }
+            Place::Vertex(x) => {
+                for c in curves_at_vertex(surface, x) {
+                    let chain = &model.curves()[c as usize].chain;
+                    for (j, _) in chain.iter().enumerate().filter(|(_, &v)| v == x) {
+                        on_curve.push((c, j as f64, i as u32));
+                    }
+                }
+            }
+            Place::Inside => {}
+        }
+    }
+    on_curve.sort_by(|x, y| {
+        (x.0, x.1, x.2)
+            .partial_cmp(&(y.0, y.1, y.2))
+            .expect("finite")
+    });
+    on_curve.dedup();
+    on_curve
+}
+
+/// The curves of the hard edges at control vertex x, ascending, each once.
+fn curves_at_vertex(surface: &Surface, x: u32) -> Vec<u32> {
+    let topo = surface.net().topology();
+    let model = surface.model();
+    let mut curves: Vec<u32> = topo
+        .ring(x as usize)
+        .iter()
+        .filter_map(|&y| topo.find_edge(x, y))
+        .filter_map(|e| model.curve_of_edge(e))
+        .collect();
+    curves.sort_unstable();
+    curves.dedup();
+    curves
 }

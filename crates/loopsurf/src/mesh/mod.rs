@@ -25,11 +25,13 @@
 //! [`labels`] for the same labels of any mesh whose vertices carry their
 //! surface points.
 
+mod assemble;
 pub(crate) mod density;
 pub mod high_order;
 pub mod labels;
 mod pattern;
 mod quality;
+mod rounds;
 
 pub use crate::geometry::min_angle;
 pub use high_order::{onto_surface, CurvedMesh, OntoSurface};
@@ -40,20 +42,24 @@ use crate::error::{Error, Result};
 use crate::parameters::{self, vertex_point, SurfacePoint};
 use crate::surface::{Chart, Surface};
 use crate::topology::NONE;
+use assemble::assemble;
 use density::{bend, edge_length, grade, level, level_for_tolerance};
 use glam::{DVec2, DVec3};
 use pattern::{side_param, Pattern};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
+use rounds::{Cuts, Progress};
 
 /// The chord tolerance `--adapt curvature` uses when none is given, as a
 /// fraction of the bounding-box diagonal.
 pub const DEFAULT_ADAPT_TOLERANCE: f64 = 1e-3;
 
-/// A relative chord tolerance checked (strictly between 0 and 1), or with
-/// curvature adaptation and none given, [`DEFAULT_ADAPT_TOLERANCE`]. Shared
-/// by the chart mesher and the remesher.
-pub(crate) fn checked_tolerance(tolerance: Option<f64>, adapt: bool) -> Result<Option<f64>> {
+/// The relative chord tolerance a mesher works to: `tolerance` checked
+/// (strictly between 0 and 1, a fraction of the bounding-box diagonal),
+/// or with curvature adaptation and none given,
+/// [`DEFAULT_ADAPT_TOLERANCE`]; `None` for neither. The chart mesher and
+/// the remesher ([`crate::remesh`]) take their tolerance through it, so
+/// both accept and refuse the same values with the same words.
+pub fn chord_tolerance(tolerance: Option<f64>, adapt: bool) -> Result<Option<f64>> {
     match tolerance {
         Some(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => Err(Error::InvalidArgument(format!(
             "tolerance {t}: must lie strictly between 0 and 1 (a fraction of the bounding-box diagonal)"
@@ -212,7 +218,7 @@ impl<'a> Mesher<'a> {
             }
             _ => {}
         }
-        checked_tolerance(self.tolerance, self.adapt)
+        chord_tolerance(self.tolerance, self.adapt)
     }
 
     /// Meshes the surface.
@@ -223,43 +229,79 @@ impl<'a> Mesher<'a> {
     /// Meshes the surface, calling `progress(done, total)` as control
     /// triangles are cut (from several threads; `total` grows when a round
     /// of refinement is needed).
+    ///
+    /// Levels from the density (and the tolerance's curvature estimate),
+    /// graded; then rounds of cutting what changed and, under a tolerance,
+    /// measuring and refining where the chord error is missed, up to
+    /// [`MAX_ROUNDS`]; then the cuts assembled into one mesh.
     pub fn run_with_progress(&self, progress: &(dyn Fn(u64, u64) + Sync)) -> Result<SurfaceMesh> {
         let relative = self.check()?;
         let surface = self.surface;
-        let net = surface.net();
-        let topo = net.topology();
-        let (tris, edges) = (net.triangles(), topo.edges());
-        let diagonal = net.bbox_diagonal();
+        let topo = surface.net().topology();
+        let diagonal = surface.net().bbox_diagonal();
         let tolerance = relative.map(|r| r * diagonal);
-
         let corners = corner_points(surface)?;
-        let mids: Vec<DVec3> = (0..edges.len())
-            .into_par_iter()
-            .map(|e| {
-                let (t, s) = owner(topo, e);
-                let q = side_param(s, 0.5);
-                surface.point(t, q.x, q.y)
-            })
-            .collect::<Result<_>>()?;
-        let lengths: Vec<f64> = (0..edges.len())
-            .map(|e| edge_length(edges[e].map(|v| corners[v as usize].1), mids[e]))
-            .collect();
+        let mut levels = self.start_levels(&corners, tolerance)?;
+        grade(topo, &mut levels);
+        let mut cuts = Cuts::new(topo.edges().len(), levels.len());
+        let mut cuts_per_edge = cuts.edge_levels(topo, &levels);
+        let counter = Progress::new(progress);
+        for round in 0.. {
+            self.check_budget(&levels, &cuts_per_edge)?;
+            cuts.cut_edges(surface, &cuts_per_edge, &corners, tolerance)?;
+            cuts.cut_triangles(self, &levels, &cuts_per_edge, &corners, tolerance, &counter)?;
+            let Some(tol) = tolerance else { break };
+            if !cuts.refine_where_missed(topo, tol, &mut levels, &cuts_per_edge) {
+                break;
+            }
+            if round + 1 == MAX_ROUNDS {
+                return Err(Error::InvalidArgument(format!(
+                    "tolerance {:e} not reached after {MAX_ROUNDS} rounds of refinement (chord error still {:e} of the diagonal)",
+                    relative.unwrap_or(0.0),
+                    cuts.worst() / diagonal
+                )));
+            }
+            grade(topo, &mut levels);
+            cuts_per_edge = cuts.edge_levels(topo, &levels);
+        }
+        counter.finish();
+        let (edge_cuts, tri_cuts) = cuts.into_cuts();
+        Ok(assemble(
+            surface,
+            &corners,
+            &edge_cuts,
+            &tri_cuts,
+            diagonal,
+            tolerance.is_some(),
+        ))
+    }
+
+    /// Each control triangle's first level: from the density and, under a
+    /// tolerance, from its curvature estimate ([`bend`]) — with curvature
+    /// adaptation its own, else one edge length for the whole surface.
+    fn start_levels(
+        &self,
+        corners: &[(SurfacePoint, DVec3)],
+        tolerance: Option<f64>,
+    ) -> Result<Vec<u32>> {
+        let surface = self.surface;
+        let topo = surface.net().topology();
+        let lengths = edge_lengths(surface, corners)?;
         let longest = |t: usize| {
             topo.triangle_edges()[t]
                 .iter()
                 .map(|&e| lengths[e as usize])
                 .fold(0.0, f64::max)
         };
+        let triangles = surface.net().triangles().len();
         let bends: Vec<f64> = match tolerance {
-            Some(_) => (0..tris.len())
+            Some(_) => (0..triangles)
                 .into_par_iter()
                 .map(|t| bend(surface, t))
                 .collect::<Result<_>>()?,
             None => Vec::new(),
         };
-
-        // Initial levels from the density, then the tolerance estimate.
-        let mut levels: Vec<u32> = (0..tris.len())
+        let mut levels: Vec<u32> = (0..triangles)
             .map(|t| match self.density {
                 Density::Uniform(n) => n,
                 Density::Size(h) => level(longest(t) / h),
@@ -274,7 +316,7 @@ impl<'a> Mesher<'a> {
             } else if self.density == Density::FromTolerance {
                 // One edge length for the whole surface: the smallest any
                 // triangle's curvature asks for.
-                let h = (0..tris.len())
+                let h = (0..triangles)
                     .filter(|&t| bends[t] > 0.0)
                     .map(|t| longest(t) * (tol / bends[t]).sqrt())
                     .fold(f64::INFINITY, f64::min);
@@ -285,132 +327,7 @@ impl<'a> Mesher<'a> {
                 }
             }
         }
-        grade(topo, &mut levels);
-        let mut edge_floor = vec![1u32; edges.len()];
-        let edge_levels = |levels: &[u32], floor: &[u32]| -> Vec<u32> {
-            (0..edges.len())
-                .map(|e| {
-                    let pair = topo.edge_triangles()[e];
-                    pair.iter()
-                        .filter(|&&t| t != NONE)
-                        .map(|&t| levels[t as usize])
-                        .max()
-                        .unwrap_or(1)
-                        .max(floor[e])
-                })
-                .collect()
-        };
-        let mut cuts_per_edge = edge_levels(&levels, &edge_floor);
-
-        let done = AtomicU64::new(0);
-        let total = AtomicU64::new(0);
-        let mut edge_cuts: Vec<Option<EdgeCut>> = (0..edges.len()).map(|_| None).collect();
-        let mut tri_cuts: Vec<Option<TriangleCut>> = (0..tris.len()).map(|_| None).collect();
-        let mut edge_history = vec![None; edges.len()];
-        let mut tri_history = vec![None; tris.len()];
-        for round in 0.. {
-            self.check_budget(&levels, &cuts_per_edge)?;
-            let dirty_edges: Vec<usize> = (0..edges.len())
-                .filter(|&e| {
-                    edge_cuts[e]
-                        .as_ref()
-                        .map_or(true, |c| c.points.len() + 1 != cuts_per_edge[e] as usize)
-                })
-                .collect();
-            let fresh: Vec<(usize, EdgeCut)> = dirty_edges
-                .par_iter()
-                .map(|&e| {
-                    Ok((
-                        e,
-                        cut_edge(surface, e, cuts_per_edge[e], &corners, tolerance)?,
-                    ))
-                })
-                .collect::<Result<_>>()?;
-            for (e, cut) in fresh {
-                edge_cuts[e] = Some(cut);
-            }
-            let pattern_of = |t: usize| Pattern {
-                sides: topo.triangle_edges()[t].map(|e| cuts_per_edge[e as usize]),
-                level: levels[t],
-            };
-            let dirty: Vec<usize> = (0..tris.len())
-                .filter(|&t| {
-                    tri_cuts[t]
-                        .as_ref()
-                        .map_or(true, |c| c.pattern != pattern_of(t))
-                })
-                .collect();
-            total.fetch_add(dirty.len() as u64, Ordering::Relaxed);
-            let edge_cuts_ref = &edge_cuts;
-            let fresh: Vec<(usize, TriangleCut)> = dirty
-                .par_iter()
-                .map(|&t| {
-                    let boundary =
-                        boundary_points(surface, t, &pattern_of(t), &corners, edge_cuts_ref);
-                    let cut = self.cut_triangle(t, pattern_of(t), boundary, tolerance)?;
-                    let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if n % 256 == 0 {
-                        progress(n, total.load(Ordering::Relaxed));
-                    }
-                    Ok((t, cut))
-                })
-                .collect::<Result<_>>()?;
-            for (t, cut) in fresh {
-                tri_cuts[t] = Some(cut);
-            }
-            let Some(tol) = tolerance else { break };
-            let mut violated = false;
-            for (e, cut) in edge_cuts.iter().enumerate() {
-                let cut = cut.as_ref().expect("every edge is cut");
-                if cut.deviation > tol {
-                    edge_floor[e] =
-                        finer(cuts_per_edge[e], cut.deviation, tol, &mut edge_history[e]);
-                    violated = true;
-                    // Keep the triangles on both sides within the grading
-                    // of their side, or their strips would fan.
-                    let floor = level(edge_floor[e] as f64 / density::GRADING);
-                    for &t in &topo.edge_triangles()[e] {
-                        if t != NONE {
-                            levels[t as usize] = levels[t as usize].max(floor);
-                        }
-                    }
-                }
-            }
-            for (t, cut) in tri_cuts.iter().enumerate() {
-                let cut = cut.as_ref().expect("every triangle is cut");
-                if cut.deviation > tol {
-                    levels[t] = finer(levels[t], cut.deviation, tol, &mut tri_history[t]);
-                    violated = true;
-                }
-            }
-            if !violated {
-                break;
-            }
-            if round + 1 == MAX_ROUNDS {
-                let worst = (edge_cuts.iter().flatten().map(|c| c.deviation))
-                    .chain(tri_cuts.iter().flatten().map(|c| c.deviation))
-                    .fold(0.0, f64::max);
-                return Err(Error::InvalidArgument(format!(
-                    "tolerance {:e} not reached after {MAX_ROUNDS} rounds of refinement (chord error still {:e} of the diagonal)",
-                    relative.unwrap_or(0.0),
-                    worst / diagonal
-                )));
-            }
-            grade(topo, &mut levels);
-            cuts_per_edge = edge_levels(&levels, &edge_floor);
-        }
-        let n = done.load(Ordering::Relaxed);
-        progress(n, n);
-        let edge_cuts: Vec<EdgeCut> = edge_cuts.into_iter().map(|c| c.expect("cut")).collect();
-        let tri_cuts: Vec<TriangleCut> = tri_cuts.into_iter().map(|c| c.expect("cut")).collect();
-        Ok(assemble(
-            surface,
-            &corners,
-            &edge_cuts,
-            &tri_cuts,
-            diagonal,
-            tolerance.is_some(),
-        ))
+        Ok(levels)
     }
 
     /// Refuses meshes over the triangle budget before building them.
@@ -585,6 +502,24 @@ fn owner(topo: &crate::Topology, e: usize) -> (usize, usize) {
     (t, s)
 }
 
+/// The length of the limit curve over each control edge, from its ends
+/// and its midpoint ([`edge_length`]).
+fn edge_lengths(surface: &Surface, corners: &[(SurfacePoint, DVec3)]) -> Result<Vec<f64>> {
+    let topo = surface.net().topology();
+    let edges = topo.edges();
+    let mids: Vec<DVec3> = (0..edges.len())
+        .into_par_iter()
+        .map(|e| {
+            let (t, s) = owner(topo, e);
+            let q = side_param(s, 0.5);
+            surface.point(t, q.x, q.y)
+        })
+        .collect::<Result<_>>()?;
+    Ok((0..edges.len())
+        .map(|e| edge_length(edges[e].map(|v| corners[v as usize].1), mids[e]))
+        .collect())
+}
+
 /// Per control vertex: its parameters in the first triangle of its fan and
 /// its limit point (unused vertices get a placeholder and are never output).
 fn corner_points(surface: &Surface) -> Result<Vec<(SurfacePoint, DVec3)>> {
@@ -715,114 +650,6 @@ fn boundary_points(
     out
 }
 
-/// Numbers the vertices (used control vertices, then edge points edge by
-/// edge, then interior points triangle by triangle) and collects the output.
-fn assemble(
-    surface: &Surface,
-    corners: &[(SurfacePoint, DVec3)],
-    edge_cuts: &[EdgeCut],
-    tri_cuts: &[TriangleCut],
-    diagonal: f64,
-    measured: bool,
-) -> SurfaceMesh {
-    let net = surface.net();
-    let topo = net.topology();
-    let mut corner_index = vec![NONE; corners.len()];
-    let mut points = Vec::new();
-    let mut params = Vec::new();
-    for (v, (p, x)) in corners.iter().enumerate() {
-        if p.tri != NONE {
-            corner_index[v] = points.len() as u32;
-            points.push(*x);
-            params.push(*p);
-        }
-    }
-    let mut edge_start = Vec::with_capacity(edge_cuts.len());
-    for (e, cut) in edge_cuts.iter().enumerate() {
-        edge_start.push(points.len() as u32);
-        let t = topo.edge_triangles()[e][0];
-        points.extend_from_slice(&cut.points);
-        params.extend(cut.params.iter().map(|q| SurfacePoint {
-            tri: t,
-            v: q.x,
-            w: q.y,
-        }));
-    }
-    let mut interior_start = Vec::with_capacity(tri_cuts.len());
-    for (t, cut) in tri_cuts.iter().enumerate() {
-        interior_start.push(points.len() as u32);
-        points.extend_from_slice(&cut.points);
-        params.extend(cut.params.iter().map(|q| SurfacePoint {
-            tri: t as u32,
-            v: q.x,
-            w: q.y,
-        }));
-    }
-    let global = |t: usize, pattern: &Pattern, local: u32| -> u32 {
-        let nb = pattern.boundary_len() as u32;
-        if local >= nb {
-            return interior_start[t] + (local - nb);
-        }
-        match boundary_source(surface, t, pattern, local as usize) {
-            Source::Corner(v) => corner_index[v as usize],
-            Source::Edge(e, i) => edge_start[e] + i as u32,
-        }
-    };
-    let per_chart: Vec<Vec<[u32; 3]>> = tri_cuts
-        .par_iter()
-        .enumerate()
-        .map(|(t, cut)| {
-            cut.tris
-                .iter()
-                .map(|tri| tri.map(|l| global(t, &cut.pattern, l)))
-                .collect()
-        })
-        .collect();
-    let charts: Vec<u32> = per_chart
-        .iter()
-        .enumerate()
-        .flat_map(|(t, v)| std::iter::repeat(t as u32).take(v.len()))
-        .collect();
-    let triangles = per_chart.into_iter().flatten().collect();
-    let model = surface.model();
-    let faces = charts
-        .iter()
-        .map(|&c| model.face_of_triangle()[c as usize])
-        .collect();
-    let mut hard_edges = Vec::new();
-    let mut hard_edge_curves = Vec::new();
-    for (e, &[a, b]) in topo.edges().iter().enumerate() {
-        if net.features().is_hard_edge(e) {
-            let n = edge_cuts[e].points.len() as u32;
-            let chain: Vec<u32> = std::iter::once(corner_index[a as usize])
-                .chain((0..n).map(|i| edge_start[e] + i))
-                .chain(std::iter::once(corner_index[b as usize]))
-                .collect();
-            hard_edges.extend(chain.windows(2).map(|w| [w[0], w[1]]));
-            let curve = model.curve_of_edge(e).expect("a hard edge is on a curve");
-            hard_edge_curves.extend(std::iter::repeat(curve).take(n as usize + 1));
-        }
-    }
-    let deviation = measured.then(|| {
-        edge_cuts
-            .iter()
-            .map(|c| c.deviation)
-            .chain(tri_cuts.iter().map(|c| c.deviation))
-            .fold(0.0, f64::max)
-    });
-    SurfaceMesh {
-        points,
-        triangles,
-        params,
-        charts,
-        faces,
-        hard_edges,
-        hard_edge_curves,
-        deviation,
-        diagonal,
-    }
-}
-
 impl SurfaceMesh {
     /// The parameters of triangle `t`'s corners in its chart (control
     /// triangle `charts[t]`): the map a high-order element is curved with.
@@ -845,10 +672,6 @@ impl SurfaceMesh {
     }
 }
 
-/// [`parameters::reparameterize`] over a net's triangles, as (v, w).
-pub fn reparameterize(net: &crate::ControlNet, p: SurfacePoint, into: u32) -> Option<(f64, f64)> {
-    parameters::reparameterize(net.topology(), p, into).map(|q| (q.v, q.w))
-}
 
 #[cfg(test)]
 mod tests {

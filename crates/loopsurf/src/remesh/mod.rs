@@ -5,8 +5,8 @@
 //! parameter domain, so its triangles copy the control net's shapes. Here
 //! its output is only the start: a conforming mesh with the crease chains
 //! as edge chains and every vertex a surface point. Then, for a few rounds,
-//! the passes of [`passes`] — split long edges, collapse short ones, flip
-//! towards valence 6, relax tangentially — bring every edge within
+//! the passes — [`split`] long edges, [`collapse`] short ones, [`flip`]
+//! towards valence 6, [`relax`] tangentially — bring every edge within
 //! [4/5, 4/3] of its target length with near-equilateral triangles, and a
 //! last max–min angle flip and relaxation polish the angles, the last
 //! relaxations keeping only the moves that close no vertex's smallest
@@ -14,8 +14,9 @@
 //! chart lattice of right triangles is otherwise a fixed point of all four
 //! passes.
 //!
-//! After each round's collapses the mesh is renumbered along a Z-order
-//! curve through its vertices, so that the passes' walks stay in cache.
+//! After each round's collapses the mesh is [`renumber`]ed along a
+//! Z-order curve through its vertices, so that the passes' walks stay in
+//! cache. Caps facing a curve are removed in the polish ([`caps`]).
 //!
 //! Every vertex carries its parameters (tri, v, w) and is exactly the
 //! surface there ([`vertices`]); corners never move, crease and boundary
@@ -29,31 +30,38 @@
 //! (the distance to the surface by local projection, which is at least the
 //! true distance, so a bound, confirmed by certified snap where it exceeds
 //! the tolerance); where it is exceeded the sizes there shrink and the
-//! rounds run again, up to [`TOLERANCE_ROUNDS`] times. The mesh then
-//! reports the largest chord error measured ([`SurfaceMesh::deviation`]),
+//! rounds run again, up to [`TOLERANCE_ROUNDS`] times ([`tolerance`]).
+//! The mesh then reports the largest chord error measured ([`SurfaceMesh::deviation`]),
 //! which a caller compares with the tolerance: a few edges can be stuck
 //! longer than their size (a split would fold a triangle where the
 //! surface turns sharply within one edge, as at a cusp of a boundary
 //! curve), and a mesh with the tolerance missed there is worth more than
 //! none.
 
+mod budget;
+mod caps;
+mod collapse;
 mod connectivity;
-mod passes;
+mod finish;
+mod flip;
+mod relax;
+mod remeshing;
+mod renumber;
+mod shake;
 mod sizing;
+mod split;
+mod start;
+mod tolerance;
+mod validity;
 mod vertices;
 
 use crate::error::{Error, Result};
-use crate::mesh::{Density, Mesher, SurfaceMesh};
-use crate::refine::SurfacePoint;
+use crate::mesh::{chord_tolerance, SurfaceMesh};
 use crate::surface::Surface;
-use crate::topology::NONE;
-use connectivity::Connectivity;
-use glam::DVec3;
-use passes::{Remeshing, EDGES_SHORT_BY};
-use rayon::prelude::*;
+use budget::Budget;
+use remeshing::Remeshing;
 use sizing::Sizing;
-use std::collections::HashMap;
-use vertices::{Kind, Placer, Vertex};
+use tolerance::{chord_errors, Shrinking};
 
 /// The default size cap of curvature adaptation without `size`, as a
 /// fraction of the bounding-box diagonal.
@@ -69,11 +77,6 @@ pub const DEFAULT_GRADATION: f64 = 1.3;
 /// (mpi.off: curvatures of 68 000 per unit) can ask for sizes no memory
 /// holds, and the user should hear so, not meet the out-of-memory killer.
 pub const DEFAULT_MAX_TRIANGLES: usize = 20_000_000;
-
-/// The chart mesher's start is denser than the remesher's output (about
-/// 3× at the same size, the Viking at 1%: 75 840 against 24 752): its
-/// budget is this many times the remesher's.
-const START_BUDGET: usize = 4;
 
 /// What the passes aim at for `--size H`, in units of H. Edges come out
 /// shorter than their target (relaxation pulls each vertex to the centroid
@@ -108,10 +111,6 @@ const GUARDED: usize = 2;
 
 /// Rounds of re-sizing where the measured chord error exceeds the tolerance.
 const TOLERANCE_ROUNDS: usize = 6;
-
-/// A control triangle that shrank is stuck when its worst chord error
-/// after that is still above this share of the one before.
-const STUCK: f64 = 0.8;
 
 /// A quality remesher of `surface`; configure it, then [`Remesher::run`].
 #[derive(Clone)]
@@ -172,20 +171,10 @@ impl<'a> Remesher<'a> {
         self
     }
 
-    /// The error of a density over the budget.
-    fn over_budget(&self, expected: f64) -> Error {
-        Error::OverBudget {
-            needed: expected,
-            limit: self.max_triangles,
-            message: format!(
-                "the requested density needs about {expected:.3e} triangles, over the budget of {}: loosen the tolerance, raise the size or raise the budget",
-                self.max_triangles
-            ),
-        }
-    }
-
-    /// The size field and the tolerance in model units, checked.
-    fn sizing(&self) -> Result<(Sizing, Option<f64>)> {
+    /// The size field, the tolerance in model units and the budget,
+    /// checked (a uniform size against the budget too, before the start
+    /// mesh is built).
+    fn sizing(&self) -> Result<(Sizing, Option<f64>, Budget)> {
         let bad = |m: String| Err(Error::InvalidArgument(m));
         let diagonal = self.surface.net().bbox_diagonal();
         if let Some(h) = self.size {
@@ -199,8 +188,7 @@ impl<'a> Remesher<'a> {
                 self.gradation
             ));
         }
-        let tolerance =
-            crate::mesh::checked_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
+        let tolerance = chord_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
         let sizing = match (self.size, self.adapt, tolerance) {
             (Some(h), false, None) => Sizing::Uniform(h * UNIFORM_AIM),
             // A size with a tolerance sizes by curvature under the size.
@@ -219,100 +207,26 @@ impl<'a> Remesher<'a> {
             }
             (Some(_), true, None) => unreachable!("adaptation has a tolerance"),
         };
-        if self.max_triangles == 0 {
-            return bad("max_triangles 0: must be at least 1".into());
-        }
+        let budget = Budget::new(self.max_triangles)?;
         if let Sizing::Uniform(h) = sizing {
-            // From the control net's area (near the surface's), before
-            // the start mesh is built.
-            let expected =
-                EDGES_SHORT_BY * self.surface.net().area() / (0.25 * 3f64.sqrt() * h * h);
-            if expected > self.max_triangles as f64 {
-                return Err(self.over_budget(expected));
-            }
+            budget.check_uniform(self.surface.net().area(), h)?;
         }
-        Ok((sizing, tolerance))
+        Ok((sizing, tolerance, budget))
     }
 
-    /// Remeshes the surface.
+    /// Remeshes the surface: from the chart mesh ([`start`]), rounds of
+    /// the passes and a polish; then, under a tolerance, the chord error
+    /// measured, and where it is missed the sizes shrunk and the rounds
+    /// and polish run again ([`tolerance`]).
     pub fn run(&self) -> Result<SurfaceMesh> {
-        let (sizing, tolerance) = self.sizing()?;
-        // The chart mesher at the same density: conforming, with the crease
-        // chains, and cheap. Under a tolerance it starts adapted, unless the
-        // chart mesher cannot meet it (its own measure, in parameters, can
-        // stall where the remesher's sizes do not): then from the largest
-        // size alone.
-        let plain = Mesher::new(self.surface)
-            .density(Density::Size(sizing.largest()))
-            .max_triangles(self.max_triangles.saturating_mul(START_BUDGET))
-            .swaps(false);
-        let start = match (&sizing, tolerance) {
-            (Sizing::Curvature { .. }, Some(tol)) => {
-                let diagonal = self.surface.net().bbox_diagonal();
-                plain
-                    .clone()
-                    .adapt_curvature(true)
-                    .tolerance((tol / diagonal).min(0.5))
-                    .run()
-                    .or_else(|_| plain.run())
-            }
-            _ => plain.run(),
-        }
-        .map_err(|e| {
-            e.during(format!(
-                "the chart mesh the remesher starts from (allowed {START_BUDGET} × the budget of {} triangles)",
-                self.max_triangles
-            ))
-        })?;
-        let mut work = start_from(self.surface, &start)?;
+        let (sizing, tolerance, budget) = self.sizing()?;
+        let chart = start::chart_mesh(self.surface, &sizing, tolerance, &budget)?;
+        let mut work = start::start_from(self.surface, &chart)?;
+        let mut shrinking = Shrinking::new(self.surface.net().triangles().len());
         let mut deviation = None;
-        let mut shrink = vec![1.0; self.surface.net().triangles().len()];
-        let mut last_missed = vec![f64::INFINITY; shrink.len()];
         for round in 0..=TOLERANCE_ROUNDS {
-            for r in 0..ROUNDS {
-                if round == 0 && SHAKE_ROUNDS.contains(&r) {
-                    work.shake(SHAKE);
-                }
-                work.size = sizing.sizes(self.surface, &work.mesh, &work.vertices, &shrink);
-                let expected = work.expected_triangles();
-                if expected > self.max_triangles as f64 {
-                    return Err(self.over_budget(expected));
-                }
-                // The estimate is from the mesh as it is; the splits are
-                // bounded too, by triangle slots (dead ones too), which
-                // bound the memory: splits adding more than the whole
-                // budget run away. (Not the slots alone: the mesh they
-                // start from may be denser than its sizes in places until
-                // the collapses, and fandisk at 1e-4 with a budget of
-                // 30 000 once held 60 000 after its first splits.)
-                let limit =
-                    (work.mesh.num_half_edges() as usize / 3).saturating_add(self.max_triangles);
-                work.split_long(limit);
-                if work.mesh.num_half_edges() as usize / 3 > limit {
-                    return Err(Error::OverBudget {
-                        needed: work.expected_triangles(),
-                        limit: self.max_triangles,
-                        message: format!(
-                            "the splits ran past {limit} triangles where the sizes ask for about {:.3e} (the surface may fold over itself): loosen the tolerance, raise the size or raise the budget of {}",
-                            work.expected_triangles(),
-                            self.max_triangles
-                        ),
-                    });
-                }
-                work.collapse_short();
-                work.renumber();
-                work.equalize_valences();
-                work.relax();
-            }
-            for _ in 0..POLISH {
-                work.remove_caps();
-                work.flip_for_angles();
-                work.relax();
-            }
-            work.flip_for_angles();
-            for _ in 0..GUARDED {
-                work.relax_guarded();
-            }
+            remesh_rounds(&mut work, &sizing, shrinking.factors(), &budget, round == 0)?;
+            polish(&mut work);
             let Some(tol) = tolerance else { break };
             let errors = chord_errors(&work, tol);
             let worst = errors.iter().map(|e| e.1).fold(0.0, f64::max);
@@ -320,216 +234,53 @@ impl<'a> Remesher<'a> {
             if worst <= tol || round == TOLERANCE_ROUNDS {
                 break;
             }
-            // Each control triangle shrinks once a round, by the factor its
-            // worst miss asks for: chord error falls with the square of the
-            // size. (Once per miss would compound over the many probes of
-            // one triangle, down to the floor.)
-            //
-            // A control triangle whose worst miss did not fall after it
-            // shrank is stuck, not too coarse (an edge that cannot be
-            // split where the surface turns back within it, as at a cusp
-            // of a crease or on a patch that folds): it shrinks no more.
-            // Shrinking on, mpi.off at 40° missed by the same 0.2 in its
-            // triangles 76, 82 and 84 each round while the sizes asked for
-            // ever more, from 75 thousand triangles to 29 million.
-            let mut missed = vec![0.0f64; shrink.len()];
-            for (ids, e) in errors.iter().filter(|(_, e)| *e > tol) {
-                for &v in ids {
-                    let t = work.vertices[v as usize].at.tri as usize;
-                    missed[t] = missed[t].max(*e);
-                }
-            }
-            let stuck: Vec<bool> = (0..shrink.len())
-                .map(|t| shrink[t] < 1.0 && missed[t] > STUCK * last_missed[t])
-                .collect();
-            // (A triangle that did not miss this round is judged afresh.)
-            last_missed = missed
-                .iter()
-                .map(|&e| if e > 0.0 { e } else { f64::INFINITY })
-                .collect();
-            let mut factor = vec![1.0f64; shrink.len()];
-            let topo = self.surface.net().topology();
-            for (ids, e) in errors.iter().filter(|(_, e)| *e > tol) {
-                let f = (0.8 * (tol / e).sqrt()).max(0.25);
-                for &v in ids {
-                    // Its control triangle and their neighbours: vertices
-                    // relax across control edges, into sizes not shrunk.
-                    let t = work.vertices[v as usize].at.tri as usize;
-                    if stuck[t] {
-                        continue;
-                    }
-                    factor[t] = factor[t].min(f);
-                    for &e in &topo.triangle_edges()[t] {
-                        for &n in &topo.edge_triangles()[e as usize] {
-                            if n != NONE {
-                                factor[n as usize] = factor[n as usize].min(f);
-                            }
-                        }
-                    }
-                }
-            }
-            for (s, f) in shrink.iter_mut().zip(factor) {
-                *s *= f;
-            }
+            shrinking.shrink_where_missed(&work, &errors, tol);
         }
-        Ok(finish(&work, deviation))
+        Ok(finish::finish(&work, deviation))
     }
 }
 
-/// The chord error of every triangle and edge as (its vertices, error):
-/// the distance from its centroid or midpoint to the surface by local
-/// projection (an upper bound of the true distance, and tight where the
-/// guess is near) and, where that exceeds `tolerance`, by certified snap.
-fn chord_errors(work: &Remeshing, tolerance: f64) -> Vec<(Vec<u32>, f64)> {
-    let mesh = &work.mesh;
-    let probes: Vec<(u32, Vec<u32>)> = (0..mesh.num_half_edges())
-        .filter(|&h| mesh.is_alive(h))
-        .flat_map(|h| {
-            let o = mesh.opposite(h);
-            let edge = (o == NONE || h < o).then(|| (h, vec![mesh.origin(h), mesh.dest(h)]));
-            let tri = (h % 3 == 0).then(|| (h, mesh.corners(h).to_vec()));
-            edge.into_iter().chain(tri)
-        })
-        .collect();
-    probes
-        .par_iter()
-        .map(|(h, ids)| {
-            let x = ids
-                .iter()
-                .map(|&i| work.vertices[i as usize].x)
-                .sum::<DVec3>()
-                / ids.len() as f64;
-            let face = mesh.face[(h / 3) as usize];
-            let guess = ids
-                .iter()
-                .map(|&i| &work.vertices[i as usize])
-                .find(|v| v.is_free())
-                .map(|v| v.at)
-                .unwrap_or_else(|| work.placer.guess_in(&work.vertices[ids[0] as usize], face));
-            let surface = work.placer.surface;
-            let mut d = crate::snap::project(surface, x, guess.tri as usize, guess.v, guess.w)
-                .map_or(f64::INFINITY, |s| s.distance);
-            if d > tolerance {
-                // A local minimum may be the wrong one (across a fold or a
-                // crease): the certified snap decides.
-                d = crate::snap::snap_near(surface, x, guess.tri as usize, guess.v, guess.w)
-                    .map_or(f64::INFINITY, |s| s.distance);
-            }
-            (ids.clone(), d)
-        })
-        .collect()
+/// [`ROUNDS`] rounds of the passes at the sizes `sizing` gives, shrunk by
+/// `shrink` per control triangle: split, collapse, renumber, valence
+/// flips, relaxation; shaken first in [`SHAKE_ROUNDS`] when `shake`. Each
+/// round's sizes are checked against the budget before its splits, and
+/// the splits' count after them.
+fn remesh_rounds(
+    work: &mut Remeshing,
+    sizing: &Sizing,
+    shrink: &[f64],
+    budget: &Budget,
+    shake: bool,
+) -> Result<()> {
+    let surface = work.placer.surface;
+    for r in 0..ROUNDS {
+        if shake && SHAKE_ROUNDS.contains(&r) {
+            work.shake(SHAKE);
+        }
+        work.size = sizing.sizes(surface, &work.mesh, &work.vertices, shrink);
+        budget.check(work.expected_triangles())?;
+        let limit = budget.split_limit(work.triangle_slots());
+        work.split_long(limit);
+        budget.check_splits(work.triangle_slots(), limit, || work.expected_triangles())?;
+        work.collapse_short();
+        work.renumber();
+        work.equalize_valences();
+        work.relax();
+    }
+    Ok(())
 }
 
-/// The remesher's start from a chart mesh: vertex kinds from the mesh's
-/// curve edges and the model's corners.
-fn start_from<'a>(surface: &'a Surface, start: &SurfaceMesh) -> Result<Remeshing<'a>> {
-    let placer = Placer::new(surface);
-    let model = surface.model();
-    let net = surface.net();
-    let curve_edges = start.curve_edges(surface)?;
-    let mut on_curve: Vec<Option<(u32, f64)>> = vec![None; start.points.len()];
-    let mut labels = HashMap::with_capacity(curve_edges.pairs.len());
-    for ((pair, &curve), ts) in curve_edges
-        .pairs
-        .iter()
-        .zip(&curve_edges.curves)
-        .zip(&curve_edges.params)
-    {
-        labels.insert((pair[0].min(pair[1]), pair[0].max(pair[1])), curve);
-        for k in 0..2 {
-            on_curve[pair[k] as usize] = Some((curve, ts[k]));
-        }
+/// The polish: [`POLISH`] rounds of cap removal, max–min angle flips and
+/// relaxation, a last max–min flip, and [`GUARDED`] rounds of guarded
+/// relaxation.
+fn polish(work: &mut Remeshing) {
+    for _ in 0..POLISH {
+        work.remove_caps();
+        work.flip_for_angles();
+        work.relax();
     }
-    let vertices: Vec<Vertex> = start
-        .params
-        .par_iter()
-        .zip(&start.points)
-        .zip(&on_curve)
-        .map(|((&at, &x), &curve)| {
-            if let Some(vertex) = control_vertex(net, at) {
-                if model.corners().binary_search(&vertex).is_ok() {
-                    return placer.corner(vertex, at);
-                }
-            }
-            Ok(match curve {
-                Some((curve, t)) => Vertex {
-                    x,
-                    at,
-                    kind: Kind::Curve { curve, t },
-                    normal: DVec3::ZERO,
-                },
-                None => Vertex {
-                    x,
-                    at,
-                    kind: Kind::Free,
-                    normal: surface
-                        .normal(at.tri as usize, at.v, at.w)
-                        .unwrap_or(DVec3::ZERO),
-                },
-            })
-        })
-        .collect::<Result<_>>()?;
-    let mesh = Connectivity::new(
-        start.points.len(),
-        &start.triangles,
-        &labels,
-        start.faces.clone(),
-    )
-    .map_err(|e| Error::InvalidArgument(format!("the start mesh is not a manifold: {e:?}")))?;
-    Ok(Remeshing::new(placer, mesh, vertices))
-}
-
-/// The control vertex a surface point sits at, if it sits at one.
-fn control_vertex(net: &crate::ControlNet, at: SurfacePoint) -> Option<u32> {
-    let weights = [1.0 - at.v - at.w, at.v, at.w];
-    let k = weights.iter().position(|&x| (x - 1.0).abs() <= 1e-12)?;
-    Some(net.triangles()[at.tri as usize][k])
-}
-
-/// The output: live vertices and triangles compacted, feature edges
-/// ordered by curve and parameter.
-fn finish(work: &Remeshing, deviation: Option<f64>) -> SurfaceMesh {
-    let (triangles, faces, index) = work.mesh.compact();
-    let mut points = Vec::with_capacity(triangles.len() / 2 + 2);
-    let mut params = Vec::with_capacity(triangles.len() / 2 + 2);
-    for (v, &i) in index.iter().enumerate() {
-        if i != NONE {
-            points.push(work.vertices[v].x);
-            params.push(work.vertices[v].at);
-        }
-    }
-    let mut hard: Vec<(u32, f64, [u32; 2])> = Vec::new();
-    let mesh = &work.mesh;
-    for h in 0..mesh.num_half_edges() {
-        if !mesh.is_alive(h) {
-            continue;
-        }
-        let o = mesh.opposite(h);
-        let label = mesh.edge_label[h as usize];
-        if label == NONE || (o != NONE && o < h) {
-            continue;
-        }
-        let (a, b) = (mesh.origin(h), mesh.dest(h));
-        let ta = work.placer.t_on(&work.vertices[a as usize], label, None);
-        let tb = work.placer.t_on(&work.vertices[b as usize], label, ta);
-        let (ta, tb) = (ta.unwrap_or(0.0), tb.unwrap_or(0.0));
-        let pair = [index[a as usize], index[b as usize]];
-        if ta <= tb {
-            hard.push((label, ta, pair));
-        } else {
-            hard.push((label, tb, [pair[1], pair[0]]));
-        }
-    }
-    hard.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
-    SurfaceMesh {
-        points,
-        triangles,
-        params,
-        charts: Vec::new(),
-        faces,
-        hard_edges: hard.iter().map(|e| e.2).collect(),
-        hard_edge_curves: hard.iter().map(|e| e.0).collect(),
-        deviation,
-        diagonal: work.placer.surface.net().bbox_diagonal(),
+    work.flip_for_angles();
+    for _ in 0..GUARDED {
+        work.relax_guarded();
     }
 }

@@ -20,6 +20,7 @@
 
 use super::connectivity::Connectivity;
 use super::vertices::Vertex;
+use crate::parameters::INTERIOR_SAMPLES;
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -96,7 +97,7 @@ fn largest_curvature(surface: &Surface, t: usize) -> f64 {
     // Samples away from the corners: next to an irregular corner the
     // curvature grows without bound, and one such sample would shrink the
     // whole triangle; the vertices' own curvature refines there instead.
-    for (v, w) in crate::mesh::density::SAMPLES {
+    for (v, w) in INTERIOR_SAMPLES {
         if v.min(w).min(1.0 - v - w) < 0.1 {
             continue;
         }

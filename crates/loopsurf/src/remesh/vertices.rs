@@ -9,7 +9,7 @@
 //! moves and is never removed).
 
 use crate::error::Result;
-use crate::refine::SurfacePoint;
+use crate::parameters::{self, vertex_in, SurfacePoint};
 use crate::surface::Surface;
 use glam::DVec3;
 
@@ -106,10 +106,7 @@ impl<'a> Placer<'a> {
                 return None;
             }
             let f = s.eval(tri, nv, nw).ok()?;
-            let normal = f.xv.cross(f.xw).normalize_or_zero();
-            if f.at_special_vertex || normal == DVec3::ZERO {
-                return None;
-            }
+            let normal = f.normal().filter(|_| !f.at_special_vertex)?;
             Some(Vertex {
                 x: f.x,
                 at: SurfacePoint {
@@ -132,7 +129,12 @@ impl<'a> Placer<'a> {
         let net = self.surface.net();
         let topo = net.topology();
         let features = net.features();
-        let weights = [1.0 - v - w, v, w];
+        let weights = SurfacePoint {
+            tri: tri as u32,
+            v,
+            w,
+        }
+        .weights();
         let zero = weights.map(|x| x.abs() <= 1e-12);
         let corners = net.triangles()[tri];
         (0..3).any(|z| {
@@ -232,11 +234,11 @@ impl<'a> Placer<'a> {
     pub fn between_in(&self, a: &Vertex, b: &Vertex, face: u32) -> Option<Vertex> {
         let (pa, pb) = (self.guess_in(a, face), self.guess_in(b, face));
         let net = self.surface.net();
-        let (v, w) = crate::mesh::reparameterize(net, pb, pa.tri)?;
+        let pb = parameters::reparameterize(net.topology(), pb, pa.tri)?;
         let at = SurfacePoint {
             tri: pa.tri,
-            v: 0.5 * (pa.v + v),
-            w: 0.5 * (pa.w + w),
+            v: 0.5 * (pa.v + pb.v),
+            w: 0.5 * (pa.w + pb.w),
         };
         let normal = self.surface.normal(at.tri as usize, at.v, at.w).ok()?;
         Some(Vertex {
@@ -263,12 +265,7 @@ impl<'a> Placer<'a> {
                 topo.fan(vertex as usize)
                     .iter()
                     .find(|&&t| self.face_of[t as usize] == face)
-                    .map(|&t| {
-                        let corners = self.surface.net().triangles()[t as usize];
-                        let k = corners.iter().position(|&c| c == vertex).unwrap_or(0);
-                        let (v, w) = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k];
-                        SurfacePoint { tri: t, v, w }
-                    })
+                    .map(|&t| vertex_in(topo, t, vertex).unwrap_or(SurfacePoint::corner(t, 0)))
                     .unwrap_or(v.at)
             }
         }

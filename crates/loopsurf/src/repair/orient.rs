@@ -15,60 +15,15 @@ use crate::io::MeshData;
 
 /// Orients every piece of `mesh` in place; one report per changed piece.
 pub(super) fn orient(mesh: &mut MeshData) -> Result<Vec<Repair>> {
-    let incid = edge_incidences(mesh);
+    let (neighbours, boundary) = neighbours_across_edges(mesh);
     let ntris = mesh.tris.len();
-    // Neighbours across manifold edges, with whether the pair traverses the
-    // shared edge the same way (then exactly one of them must turn).
-    let mut neighbours: Vec<Vec<(u32, bool)>> = vec![Vec::new(); ntris];
-    let mut boundary = vec![false; ntris];
-    let mut i = 0;
-    while i < incid.len() {
-        let j = i + incid[i..].iter().take_while(|x| x.0 == incid[i].0).count();
-        let [a, b] = incid[i].0;
-        match &incid[i..j] {
-            [(_, t1), (_, t2)] => {
-                let same =
-                    runs(&mesh.tris[*t1 as usize], a, b) == runs(&mesh.tris[*t2 as usize], a, b);
-                neighbours[*t1 as usize].push((*t2, same));
-                neighbours[*t2 as usize].push((*t1, same));
-            }
-            others => others
-                .iter()
-                .for_each(|&(_, t)| boundary[t as usize] = true),
-        }
-        i = j;
-    }
-
     let mut flip: Vec<Option<bool>> = vec![None; ntris];
     let mut report = Vec::new();
-    for seed in 0..ntris {
-        if flip[seed].is_some() {
+    for first in 0..ntris {
+        if flip[first].is_some() {
             continue;
         }
-        flip[seed] = Some(false);
-        let mut piece = vec![seed];
-        let mut k = 0;
-        while k < piece.len() {
-            let t = piece[k];
-            k += 1;
-            let ft = flip[t].unwrap_or(false);
-            for &(u, same) in &neighbours[t] {
-                let want = ft ^ same;
-                match flip[u as usize] {
-                    None => {
-                        flip[u as usize] = Some(want);
-                        piece.push(u as usize);
-                    }
-                    Some(f) if f != want => {
-                        return Err(Error::NonOrientable {
-                            tri: u as usize,
-                            first_triangle: seed,
-                        })
-                    }
-                    Some(_) => {}
-                }
-            }
-        }
+        let piece = walk_piece(first, &neighbours, &mut flip)?;
         let turned = piece.iter().filter(|&&t| flip[t] == Some(true)).count();
         if turned == 0 {
             continue;
@@ -88,13 +43,76 @@ pub(super) fn orient(mesh: &mut MeshData) -> Result<Vec<Repair>> {
             }
         }
         report.push(Repair::Reoriented {
-            first_triangle: seed,
+            first_triangle: first,
             triangles: piece.len(),
             flipped,
             outward: closed,
         });
     }
     Ok(report)
+}
+
+/// Each triangle's neighbours across manifold edges, with whether the pair
+/// traverses the shared edge the same way (then exactly one of them must
+/// turn), and whether it has an edge of another count of triangles.
+fn neighbours_across_edges(mesh: &MeshData) -> (Vec<Vec<(u32, bool)>>, Vec<bool>) {
+    let incid = edge_incidences(mesh);
+    let ntris = mesh.tris.len();
+    let mut neighbours: Vec<Vec<(u32, bool)>> = vec![Vec::new(); ntris];
+    let mut boundary = vec![false; ntris];
+    let mut i = 0;
+    while i < incid.len() {
+        let j = i + incid[i..].iter().take_while(|x| x.0 == incid[i].0).count();
+        let [a, b] = incid[i].0;
+        match &incid[i..j] {
+            [(_, t1), (_, t2)] => {
+                let same =
+                    runs(&mesh.tris[*t1 as usize], a, b) == runs(&mesh.tris[*t2 as usize], a, b);
+                neighbours[*t1 as usize].push((*t2, same));
+                neighbours[*t2 as usize].push((*t1, same));
+            }
+            others => others
+                .iter()
+                .for_each(|&(_, t)| boundary[t as usize] = true),
+        }
+        i = j;
+    }
+    (neighbours, boundary)
+}
+
+/// The piece of triangle `first`, breadth first, each triangle's `flip`
+/// decided to agree with the neighbour it was reached from (`first` kept
+/// as it is); a contradiction is a non-orientable piece.
+fn walk_piece(
+    first: usize,
+    neighbours: &[Vec<(u32, bool)>],
+    flip: &mut [Option<bool>],
+) -> Result<Vec<usize>> {
+    flip[first] = Some(false);
+    let mut piece = vec![first];
+    let mut k = 0;
+    while k < piece.len() {
+        let t = piece[k];
+        k += 1;
+        let ft = flip[t].unwrap_or(false);
+        for &(u, same) in &neighbours[t] {
+            let want = ft ^ same;
+            match flip[u as usize] {
+                None => {
+                    flip[u as usize] = Some(want);
+                    piece.push(u as usize);
+                }
+                Some(f) if f != want => {
+                    return Err(Error::NonOrientable {
+                        tri: u as usize,
+                        first_triangle: first,
+                    })
+                }
+                Some(_) => {}
+            }
+        }
+    }
+    Ok(piece)
 }
 
 /// Whether triangle `tri` runs from a to b (rather than b to a).

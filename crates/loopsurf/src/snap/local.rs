@@ -264,6 +264,18 @@ enum Exit<'a> {
     Carried(Start<'a>),
 }
 
+impl Exit<'_> {
+    /// Stopped at a minimiser, converged.
+    fn converged(uv: DVec2, x: DVec3, leaving: Option<usize>) -> Self {
+        Exit::Stopped {
+            uv,
+            x,
+            leaving,
+            converged: true,
+        }
+    }
+}
+
 /// At a corner where the descent in `tri` stopped, the triangle around the
 /// vertex into which the distance still decreases fastest, with the
 /// vertex's parameters there: a minimum is not proven by one triangle of
@@ -328,102 +340,44 @@ fn descend_in<'a>(
         mut uv,
         mut e,
     } = start;
-    let stopped = |uv, x, leaving| Exit::Stopped {
-        uv,
-        x,
-        leaving,
-        converged: true,
-    };
+    let stopped = Exit::converged;
     let mut f = 0.5 * (e.x - p).length_squared();
     // Whether the last step stopped short at the region's boundary.
     let mut clipped = false;
     for _ in 0..MAX_ITERATIONS {
         let r = e.x - p;
         let g = DVec2::new(r.dot(e.xv), r.dot(e.xw));
-        let (full, gauss_newton) = hessians(&e, r);
-        let (a, b, c) = if positive_definite(full) {
-            full
-        } else {
-            shifted(full, gauss_newton)
-        };
         let active = [0, 1, 2].map(|k| region.on_side(k, uv));
-        let feasible = |s: DVec2| (0..3).all(|k| !active[k] || region.sides[k].0.dot(s) >= 0.0);
-        let newton = solve2(a, b, c, -g);
-        let step = if feasible(newton) {
-            Some(newton)
-        } else {
-            // Along an active edge, in whichever direction descends.
-            (0..3)
-                .filter(|&k| active[k])
-                .filter_map(|k| {
-                    let d = DVec2::new(region.sides[k].0.y, -region.sides[k].0.x);
-                    let along = |(a, b, c): (f64, f64, f64)| {
-                        d.x * d.x * a + 2.0 * d.x * d.y * b + d.y * d.y * c
-                    };
-                    let curvature = Some(along(full))
-                        .filter(|&k| k > 0.0)
-                        .unwrap_or_else(|| along(gauss_newton).max(f64::MIN_POSITIVE));
-                    let s = -g.dot(d) / curvature * d;
-                    (feasible(s) && g.dot(s) < 0.0).then_some(s)
-                })
-                .min_by(|s, t| g.dot(*s).total_cmp(&g.dot(*t)))
-        };
-        // The edge the descent would cross, when the point rests on one edge.
-        let crossing = match active {
-            [true, false, false] => Some(0),
-            [false, true, false] => Some(1),
-            [false, false, true] => Some(2),
-            _ => None,
-        }
-        .filter(|&k| region.sides[k].0.dot(g) > 0.0);
-        if let Some(k) = crossing {
-            let newton_leaves = region.sides[k].0.dot(newton) < 0.0;
-            if walk && clipped && newton_leaves && is_smooth_edge(surface, tri, k) {
-                return stopped(uv, e.x, crossing);
-            }
+        let (newton, step) = descent_step(&e, r, g, region, active);
+        let crossing = crossing_side(region, active, g);
+        // Newton would leave across a smooth edge after a step cut short
+        // there: the neighbour goes on.
+        let newton_leaves = |k: usize| region.sides[k].0.dot(newton) < 0.0;
+        let hand_on = crossing.is_some_and(|k| newton_leaves(k) && is_smooth_edge(surface, tri, k));
+        if walk && clipped && hand_on {
+            return stopped(uv, e.x, crossing);
         }
         let Some(step) = step.filter(|s| s.is_finite() && *s != DVec2::ZERO) else {
             return stopped(uv, e.x, crossing);
         };
         // The longest feasible multiple of the step, up to the whole step.
         let reach = step_reach(region, uv, step, 1.0);
-        let mut alpha = reach;
         // Close to a minimiser Newton converges quadratically: a step this
         // small, or one whose predicted gain is lost in the round-off of f
         // (where comparing values of f tells nothing), leaves an error
-        // below round-off, so take it and stop. Unless the point
-        // is not stationary at all: next to an irregular vertex the
-        // derivatives blow up or vanish and Newton's steps shrink while the
-        // distance still falls — there the step is stretched.
+        // below round-off, so take it and stop ([`last_step`]).
         let slope = g.dot(step).min(0.0);
-        let length = alpha * step.length();
-        let noise = f_round_off(e.x, p);
-        if length <= CONVERGED_STEP || -alpha * slope <= noise {
-            let at_corner = CORNERS.iter().any(|c| (uv - *c).abs().max_element() < 1e-3);
-            if at_corner && !is_stationary(&e, r) {
-                let room = step_reach(region, uv, step, f64::INFINITY);
-                let stretched = (room > alpha)
-                    .then(|| stretch(&mut chart, p, region, (uv, step), (alpha, room), f))
-                    .flatten();
-                if let Some((t_uv, t_f)) = stretched {
+        let length = reach * step.length();
+        if length <= CONVERGED_STEP || -reach * slope <= f_round_off(e.x, p) {
+            match last_step(&mut chart, p, region, &e, (uv, step), (reach, f)) {
+                LastStep::Stretched(t_uv, t_f) => {
                     uv = t_uv;
                     e = eval_at(&mut chart, uv);
                     f = t_f;
                     continue;
                 }
+                LastStep::Stop(uv, x) => return stopped(uv, x, crossing),
             }
-            if length <= STEP_TOLERANCE {
-                return stopped(uv, e.x, crossing);
-            }
-            // The step is kept unless it loses more than round-off: its
-            // end is the better stationary point even where the distances
-            // tie to the last bits.
-            let t_uv = region.clamp(uv + alpha * step);
-            let t_x = chart.point(t_uv.x, t_uv.y).expect("inside");
-            if 0.5 * (t_x - p).length_squared() <= f + noise {
-                return stopped(t_uv, t_x, crossing);
-            }
-            return stopped(uv, e.x, crossing);
         }
         // Walking, a step that leaves the triangle across a smooth edge is
         // tried whole in the neighbour: stopping at the edge would cost an
@@ -433,19 +387,8 @@ fn descend_in<'a>(
                 return Exit::Carried(next);
             }
         }
-        // Backtrack until f decreases enough (Armijo).
-        let mut moved = None;
-        for _ in 0..MAX_HALVINGS {
-            let t_uv = region.clamp(uv + alpha * step);
-            let t_e = eval_at(&mut chart, t_uv);
-            let t_f = 0.5 * (t_e.x - p).length_squared();
-            if t_f <= f + 1e-4 * alpha * slope {
-                moved = Some((t_uv, t_e, t_f));
-                break;
-            }
-            alpha *= 0.5;
-        }
-        let Some((t_uv, t_e, t_f)) = moved.filter(|m| m.0 != uv) else {
+        let moved = backtrack(&mut chart, p, region, (uv, step), (reach, f, slope));
+        let Some((t_uv, t_e, t_f, alpha)) = moved.filter(|m| m.0 != uv) else {
             return stopped(uv, e.x, crossing); // no decrease left: round-off floor
         };
         (uv, e, f) = (t_uv, t_e, t_f);
@@ -457,6 +400,128 @@ fn descend_in<'a>(
         leaving: None,
         converged: false,
     }
+}
+
+/// The Newton step from the point with residual `r` and gradient `g` (the
+/// Hessian shifted where it is not positive definite), and the step to
+/// take: Newton's if it keeps to the `active` sides' half-planes, else the
+/// best descent along one of them, if any.
+fn descent_step(
+    e: &Evaluation,
+    r: DVec3,
+    g: DVec2,
+    region: &Region,
+    active: [bool; 3],
+) -> (DVec2, Option<DVec2>) {
+    let (full, gauss_newton) = hessians(e, r);
+    let (a, b, c) = if positive_definite(full) {
+        full
+    } else {
+        shifted(full, gauss_newton)
+    };
+    let feasible = |s: DVec2| (0..3).all(|k| !active[k] || region.sides[k].0.dot(s) >= 0.0);
+    let newton = solve2(a, b, c, -g);
+    let step = if feasible(newton) {
+        Some(newton)
+    } else {
+        // Along an active edge, in whichever direction descends.
+        (0..3)
+            .filter(|&k| active[k])
+            .filter_map(|k| {
+                let d = DVec2::new(region.sides[k].0.y, -region.sides[k].0.x);
+                let along = |(a, b, c): (f64, f64, f64)| {
+                    d.x * d.x * a + 2.0 * d.x * d.y * b + d.y * d.y * c
+                };
+                let curvature = Some(along(full))
+                    .filter(|&k| k > 0.0)
+                    .unwrap_or_else(|| along(gauss_newton).max(f64::MIN_POSITIVE));
+                let s = -g.dot(d) / curvature * d;
+                (feasible(s) && g.dot(s) < 0.0).then_some(s)
+            })
+            .min_by(|s, t| g.dot(*s).total_cmp(&g.dot(*t)))
+    };
+    (newton, step)
+}
+
+/// The side the descent would cross, when the point rests on exactly one
+/// side and the gradient points out through it.
+fn crossing_side(region: &Region, active: [bool; 3], g: DVec2) -> Option<usize> {
+    match active {
+        [true, false, false] => Some(0),
+        [false, true, false] => Some(1),
+        [false, false, true] => Some(2),
+        _ => None,
+    }
+    .filter(|&k| region.sides[k].0.dot(g) > 0.0)
+}
+
+/// What [`last_step`] decided.
+enum LastStep {
+    /// The step was stretched to this point and value: go on from there.
+    Stretched(DVec2, f64),
+    /// Stop at this point (parameters and position).
+    Stop(DVec2, DVec3),
+}
+
+/// The last step of a converged solve, `alpha` times `step` from `uv`
+/// where f is `f`: taken if it loses no more than round-off (its end is
+/// the better stationary point even where the distances tie to the last
+/// bits). Unless the point is not stationary at
+/// all: next to an irregular vertex the derivatives blow up or vanish and
+/// Newton's steps shrink while the distance still falls — there the step
+/// is stretched and the solve goes on.
+fn last_step(
+    chart: &mut Chart,
+    p: DVec3,
+    region: &Region,
+    e: &Evaluation,
+    (uv, step): (DVec2, DVec2),
+    (alpha, f): (f64, f64),
+) -> LastStep {
+    let length = alpha * step.length();
+    let noise = f_round_off(e.x, p);
+    let r = e.x - p;
+    let at_corner = CORNERS.iter().any(|c| (uv - *c).abs().max_element() < 1e-3);
+    if at_corner && !is_stationary(e, r) {
+        let room = step_reach(region, uv, step, f64::INFINITY);
+        let stretched = (room > alpha)
+            .then(|| stretch(chart, p, region, (uv, step), (alpha, room), f))
+            .flatten();
+        if let Some((t_uv, t_f)) = stretched {
+            return LastStep::Stretched(t_uv, t_f);
+        }
+    }
+    if length <= STEP_TOLERANCE {
+        return LastStep::Stop(uv, e.x);
+    }
+    let t_uv = region.clamp(uv + alpha * step);
+    let t_x = chart.point(t_uv.x, t_uv.y).expect("inside");
+    if 0.5 * (t_x - p).length_squared() <= f + noise {
+        return LastStep::Stop(t_uv, t_x);
+    }
+    LastStep::Stop(uv, e.x)
+}
+
+/// Backtracks from the multiple `alpha` of `step` at `uv`, halving, until
+/// f falls enough below `f` for the `slope` (Armijo): the point, its
+/// evaluation, its f and the multiple taken; `None` if no halving does.
+fn backtrack(
+    chart: &mut Chart,
+    p: DVec3,
+    region: &Region,
+    (uv, step): (DVec2, DVec2),
+    (mut alpha, f, slope): (f64, f64, f64),
+) -> Option<(DVec2, Evaluation, f64, f64)> {
+    for _ in 0..MAX_HALVINGS {
+        let t_uv = region.clamp(uv + alpha * step);
+        let t_e = eval_at(chart, t_uv);
+        let t_f = 0.5 * (t_e.x - p).length_squared();
+        if t_f <= f + 1e-4 * alpha * slope {
+            return Some((t_uv, t_e, t_f, alpha));
+        }
+        alpha *= 0.5;
+    }
+    None
 }
 
 /// The longest multiple t ≤ `cap` of `step` with uv + t·step in the

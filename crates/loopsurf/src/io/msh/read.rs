@@ -112,35 +112,7 @@ impl MshMesh {
     /// params from the "loopsurf_params" view, which must then cover every
     /// node. Files [`write_msh`](super::write_msh) wrote come back identical.
     pub fn to_lagrange(&self) -> Result<LagrangeMesh> {
-        let bad = |message: String| Err(Error::InvalidArgument(message));
-        let place = |e: &MshElement| match e.line {
-            Some(l) => format!("element {} (line {l})", e.tag),
-            None => format!("element {}", e.tag),
-        };
-        let order = self
-            .triangles
-            .first()
-            .or(self.lines.first())
-            .map_or(1, |e| e.order);
-        for (kind, elements) in [("triangle", &self.triangles), ("line", &self.lines)] {
-            if let Some(e) = elements.iter().find(|e| e.order != order) {
-                return bad(format!(
-                    "{} is a {kind} of order {}, but the mesh is of order {order}: \
-                     a Lagrange mesh has one order",
-                    place(e),
-                    e.order
-                ));
-            }
-        }
-        let id = |e: &MshElement| -> u32 {
-            if e.physical > 0 {
-                e.physical as u32 - 1
-            } else if e.entity > 0 {
-                e.entity as u32 - 1
-            } else {
-                0
-            }
-        };
+        let order = self.one_order()?;
         let mut mesh = LagrangeMesh {
             order,
             nodes: self.nodes.clone(),
@@ -148,52 +120,95 @@ impl MshMesh {
         };
         for e in by_tag(&self.triangles) {
             mesh.triangles.extend_from_slice(&e.nodes);
-            mesh.faces.push(id(e));
+            mesh.faces.push(label(e));
         }
         for e in by_tag(&self.lines) {
             mesh.lines.extend_from_slice(&e.nodes);
-            mesh.line_curves.push(id(e));
+            mesh.line_curves.push(label(e));
         }
         let mut seen = BTreeSet::new();
         for e in by_tag(&self.points) {
             if let Some(&node) = e.nodes.first() {
                 if seen.insert(node) {
-                    mesh.corners.push((node, id(e)));
+                    mesh.corners.push((node, label(e)));
                 }
             }
         }
         if let Some(view) = self.node_data.iter().find(|d| d.name == PARAMS_VIEW) {
-            if view.components != 3 {
-                return bad(format!(
-                    "view {PARAMS_VIEW:?} has {} components; (triangle, v, w) needs 3",
-                    view.components
-                ));
-            }
-            let mut params = vec![None; self.nodes.len()];
-            for (k, &node) in view.nodes.iter().enumerate() {
-                let &[t, v, w] = view.entry(k) else {
-                    unreachable!("3 components")
-                };
-                if !(t >= 0.0 && t <= u32::MAX as f64 && t.fract() == 0.0) {
-                    return bad(format!(
-                        "view {PARAMS_VIEW:?} gives node tag {} the triangle {t}, \
-                         which is not a triangle index",
-                        self.node_tags[node as usize]
-                    ));
-                }
-                params[node as usize] = Some((t as u32, v, w));
-            }
-            let given = params.iter().filter(|p| p.is_some()).count();
-            if given != params.len() {
-                return bad(format!(
-                    "view {PARAMS_VIEW:?} gives {given} of the {} nodes; it must give all",
-                    params.len()
-                ));
-            }
-            mesh.params = params.into_iter().flatten().collect();
+            mesh.params = self.params_from(view)?;
         }
         mesh.validate()?;
         Ok(mesh)
+    }
+
+    /// The order of every triangle and line (that of the first triangle,
+    /// or line; 1 with neither); an element of another order is refused.
+    fn one_order(&self) -> Result<usize> {
+        let order = self
+            .triangles
+            .first()
+            .or(self.lines.first())
+            .map_or(1, |e| e.order);
+        for (kind, elements) in [("triangle", &self.triangles), ("line", &self.lines)] {
+            if let Some(e) = elements.iter().find(|e| e.order != order) {
+                let place = match e.line {
+                    Some(l) => format!("element {} (line {l})", e.tag),
+                    None => format!("element {}", e.tag),
+                };
+                return Err(Error::InvalidArgument(format!(
+                    "{place} is a {kind} of order {}, but the mesh is of order {order}: \
+                     a Lagrange mesh has one order",
+                    e.order
+                )));
+            }
+        }
+        Ok(order)
+    }
+
+    /// Every node's (triangle, v, w) from the params view, which must give
+    /// three components for every node.
+    fn params_from(&self, view: &MshNodeData) -> Result<Vec<(u32, f64, f64)>> {
+        let bad = |message: String| Err(Error::InvalidArgument(message));
+        if view.components != 3 {
+            return bad(format!(
+                "view {PARAMS_VIEW:?} has {} components; (triangle, v, w) needs 3",
+                view.components
+            ));
+        }
+        let mut params = vec![None; self.nodes.len()];
+        for (k, &node) in view.nodes.iter().enumerate() {
+            let &[t, v, w] = view.entry(k) else {
+                unreachable!("3 components")
+            };
+            if !(t >= 0.0 && t <= u32::MAX as f64 && t.fract() == 0.0) {
+                return bad(format!(
+                    "view {PARAMS_VIEW:?} gives node tag {} the triangle {t}, \
+                     which is not a triangle index",
+                    self.node_tags[node as usize]
+                ));
+            }
+            params[node as usize] = Some((t as u32, v, w));
+        }
+        let given = params.iter().filter(|p| p.is_some()).count();
+        if given != params.len() {
+            return bad(format!(
+                "view {PARAMS_VIEW:?} gives {given} of the {} nodes; it must give all",
+                params.len()
+            ));
+        }
+        Ok(params.into_iter().flatten().collect())
+    }
+}
+
+/// An element's label: its physical tag − 1, or its entity tag − 1 when
+/// it has no physical group, 0 when it has neither.
+fn label(e: &MshElement) -> u32 {
+    if e.physical > 0 {
+        e.physical as u32 - 1
+    } else if e.entity > 0 {
+        e.entity as u32 - 1
+    } else {
+        0
     }
 }
 

@@ -428,7 +428,39 @@ impl Parser<'_> {
 
     // ---- tags to indices
 
+    /// The mesh with every node tag turned into a node index: nodes in
+    /// tag order, elements and views referring to them.
     fn resolve(self) -> Result<MshMesh> {
+        let order = self.nodes_by_tag()?;
+        let node_tags: Vec<u64> = order.iter().map(|&i| self.nodes[i as usize].tag).collect();
+        let nodes: Vec<DVec3> = order.iter().map(|&i| self.nodes[i as usize].xyz).collect();
+        let index = NodeIndex::new(node_tags);
+        let mut mesh = MshMesh {
+            version: self.version_text.clone(),
+            binary: self.binary,
+            skipped_elements: self.skipped,
+            physical_names: self.physical_names.clone(),
+            ..Default::default()
+        };
+        for e in &self.elements {
+            let element = self.resolve_element(e, &index)?;
+            match e.kind {
+                Kind::Triangle(_) => mesh.triangles.push(element),
+                Kind::Line(_) => mesh.lines.push(element),
+                _ => mesh.points.push(element),
+            }
+        }
+        for view in &self.node_data {
+            mesh.node_data.push(self.resolve_view(view, &index)?);
+        }
+        mesh.nodes = nodes;
+        mesh.node_tags = index.tags;
+        Ok(mesh)
+    }
+
+    /// The nodes' indices in the order of their tags; a tag defined twice
+    /// is an error.
+    fn nodes_by_tag(&self) -> Result<Vec<u32>> {
         let n = self.nodes.len();
         if n > u32::MAX as usize {
             return Err(self.error_at(self.place(), format!("{n} nodes: at most 2^32 - 1")));
@@ -448,86 +480,86 @@ impl Parser<'_> {
                 ));
             }
         }
-        let node_tags: Vec<u64> = order.iter().map(|&i| self.nodes[i as usize].tag).collect();
-        let nodes: Vec<DVec3> = order.iter().map(|&i| self.nodes[i as usize].xyz).collect();
-        // Tags 1..=n (gmsh's usual numbering) map without a search.
-        let dense = node_tags
-            .iter()
-            .enumerate()
-            .all(|(i, &t)| t == i as u64 + 1);
-        let index = |tag: u64| -> Option<u32> {
-            if dense {
-                (tag >= 1 && tag <= n as u64).then(|| tag as u32 - 1)
-            } else {
-                node_tags.binary_search(&tag).ok().map(|i| i as u32)
-            }
-        };
+        Ok(order)
+    }
 
-        let mut mesh = MshMesh {
-            version: self.version_text.clone(),
-            binary: self.binary,
-            skipped_elements: self.skipped,
-            physical_names: self.physical_names.clone(),
-            ..Default::default()
+    /// An element with its node tags turned into indices.
+    fn resolve_element(&self, e: &RawElement, index: &NodeIndex) -> Result<MshElement> {
+        let mut element = MshElement {
+            tag: e.tag,
+            order: match e.kind {
+                Kind::Triangle(k) | Kind::Line(k) => k,
+                _ => 0,
+            },
+            nodes: Vec::with_capacity(e.count),
+            physical: e.physical,
+            entity: e.entity.1,
+            line: (!self.binary).then_some(e.place),
         };
-        for e in &self.elements {
-            let mut element = MshElement {
-                tag: e.tag,
-                order: match e.kind {
-                    Kind::Triangle(k) | Kind::Line(k) => k,
-                    _ => 0,
-                },
-                nodes: Vec::with_capacity(e.count),
-                physical: e.physical,
-                entity: e.entity.1,
-                line: (!self.binary).then_some(e.place),
-            };
-            if self.version == Version::V41 {
-                element.physical = self.entity_physical.get(&e.entity).copied().unwrap_or(0);
-            }
-            for &t in &self.element_nodes[e.first..e.first + e.count] {
-                let i = index(t).ok_or_else(|| {
-                    self.error_at(
-                        e.place,
-                        format!(
-                            "element {} refers to node tag {t}, which no $Nodes section defines",
-                            e.tag
-                        ),
-                    )
-                })?;
-                element.nodes.push(i);
-            }
-            match e.kind {
-                Kind::Triangle(_) => mesh.triangles.push(element),
-                Kind::Line(_) => mesh.lines.push(element),
-                _ => mesh.points.push(element),
-            }
+        if self.version == Version::V41 {
+            element.physical = self.entity_physical.get(&e.entity).copied().unwrap_or(0);
         }
-        for view in &self.node_data {
-            let mut nodes = Vec::with_capacity(view.tags.len());
-            for &(t, place) in &view.tags {
-                let i = index(t).ok_or_else(|| {
-                    self.error_at(
-                        place,
-                        format!(
-                            "view {:?} gives a value for node tag {t}, which no $Nodes section defines",
-                            view.name
-                        ),
-                    )
-                })?;
-                nodes.push(i);
-            }
-            mesh.node_data.push(MshNodeData {
-                name: view.name.clone(),
-                time: view.time,
-                time_step: view.time_step,
-                components: view.components,
-                nodes,
-                values: view.values.clone(),
-            });
+        for &t in &self.element_nodes[e.first..e.first + e.count] {
+            let i = index.of(t).ok_or_else(|| {
+                self.error_at(
+                    e.place,
+                    format!(
+                        "element {} refers to node tag {t}, which no $Nodes section defines",
+                        e.tag
+                    ),
+                )
+            })?;
+            element.nodes.push(i);
         }
-        mesh.nodes = nodes;
-        mesh.node_tags = node_tags;
-        Ok(mesh)
+        Ok(element)
+    }
+
+    /// A view with its node tags turned into indices.
+    fn resolve_view(&self, view: &RawNodeData, index: &NodeIndex) -> Result<MshNodeData> {
+        let mut nodes = Vec::with_capacity(view.tags.len());
+        for &(t, place) in &view.tags {
+            let i = index.of(t).ok_or_else(|| {
+                self.error_at(
+                    place,
+                    format!(
+                        "view {:?} gives a value for node tag {t}, which no $Nodes section defines",
+                        view.name
+                    ),
+                )
+            })?;
+            nodes.push(i);
+        }
+        Ok(MshNodeData {
+            name: view.name.clone(),
+            time: view.time,
+            time_step: view.time_step,
+            components: view.components,
+            nodes,
+            values: view.values.clone(),
+        })
+    }
+}
+
+/// Node tags, sorted, to node indices.
+struct NodeIndex {
+    tags: Vec<u64>,
+    /// Tags 1..=n (gmsh's usual numbering) map without a search.
+    dense: bool,
+}
+
+impl NodeIndex {
+    fn new(tags: Vec<u64>) -> NodeIndex {
+        let dense = tags.iter().enumerate().all(|(i, &t)| t == i as u64 + 1);
+        NodeIndex { tags, dense }
+    }
+
+    /// The index of node `tag`, if some node has it.
+    fn of(&self, tag: u64) -> Option<u32> {
+        if self.dense {
+            let n = self.tags.len();
+            (tag >= 1 && tag <= n as u64).then(|| tag as u32 - 1)
+        } else {
+            self.tags.binary_search(&tag).ok().map(|i| i as u32)
+        }
     }
 }

@@ -494,15 +494,24 @@ fn err_of(data: &[u8]) -> String {
 
 #[test]
 fn errors_name_line_or_byte() {
-    // Truncated: every prefix of a good file fails cleanly or reads.
     let path = scratch("trunc.msh");
+    truncated_files_fail_cleanly(&path);
+    text_errors_name_their_line();
+    binary_errors_name_their_byte(&path);
+    std::fs::remove_file(&path).unwrap();
+}
+
+/// Truncated: every prefix of a good file (written to `path`) fails
+/// cleanly or reads; half a file is an error naming the file, and the
+/// line or byte.
+fn truncated_files_fail_cleanly(path: &Path) {
     for binary in [false, true] {
-        write_msh(&path, &fixture(2), binary).unwrap();
-        let data = std::fs::read(&path).unwrap();
+        write_msh(path, &fixture(2), binary).unwrap();
+        let data = std::fs::read(path).unwrap();
         for cut in 0..data.len() {
-            let _ = parse_msh(&data[..cut], &path);
+            let _ = parse_msh(&data[..cut], path);
         }
-        let err = parse_msh(&data[..data.len() / 2], &path).unwrap_err();
+        let err = parse_msh(&data[..data.len() / 2], path).unwrap_err();
         assert!(matches!(err.root(), Error::Truncated { .. }), "{err}");
         let msg = err.to_string();
         assert!(msg.contains("trunc.msh"), "{msg}");
@@ -512,6 +521,12 @@ fn errors_name_line_or_byte() {
             assert!(msg.contains("trunc.msh:"), "{msg}");
         }
     }
+}
+
+/// Text files: a huge announced count, an undefined node, counts that
+/// disagree with the blocks, bad numbers, repeated tags and files that
+/// are no MSH 4.1, each named by its line.
+fn text_errors_name_their_line() {
     let ascii = |body: &str| format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n{body}");
 
     // A huge announced count and a short file: a clear error at once.
@@ -549,16 +564,19 @@ fn errors_name_line_or_byte() {
     assert!(err_of(b"solid x\n").contains("not a gmsh .msh file"));
     assert!(err_of(b"$MeshFormat\n4 0 8\n$EndMeshFormat\n").contains("re-save"));
     assert!(err_of(b"").contains("truncated"));
+}
 
-    // Binary: a patched count and a patched node tag, named by offset.
-    write_msh(&path, &fixture(1), true).unwrap();
-    let good = std::fs::read(&path).unwrap();
+/// Binary files (written to `path`): a patched count and a patched node
+/// tag, named by offset.
+fn binary_errors_name_their_byte(path: &Path) {
+    write_msh(path, &fixture(1), true).unwrap();
+    let good = std::fs::read(path).unwrap();
     let nodes = good.windows(7).position(|w| w == b"$Nodes\n").unwrap() + 7;
     let mut data = good.clone();
     // The first block's node count (after 4 size_t and 3 ints).
     let at = nodes + 32 + 12;
     data[at..at + 8].copy_from_slice(&(u64::MAX / 4).to_le_bytes());
-    let msg = parse_msh(&data, &path).unwrap_err().to_string();
+    let msg = parse_msh(&data, path).unwrap_err().to_string();
     assert!(msg.contains("the file ends at byte"), "{msg}");
     let elements = good.windows(10).position(|w| w == b"$Elements\n").unwrap() + 10;
     let mut data = good.clone();
@@ -566,7 +584,7 @@ fn errors_name_line_or_byte() {
     // and the element tag).
     let at = elements + 32 + 12 + 8 + 8;
     data[at..at + 8].copy_from_slice(&12345u64.to_le_bytes());
-    let msg = parse_msh(&data, &path).unwrap_err().to_string();
+    let msg = parse_msh(&data, path).unwrap_err().to_string();
     assert!(
         msg.contains(&format!(
             "byte {}: element 1 refers to node tag 12345",
@@ -574,7 +592,6 @@ fn errors_name_line_or_byte() {
         )),
         "{msg}"
     );
-    std::fs::remove_file(&path).unwrap();
 }
 
 /// Damaged files (bytes flipped all over a good one) end in a result

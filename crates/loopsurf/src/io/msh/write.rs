@@ -113,47 +113,7 @@ impl Layout {
             .map(|(&f, ts)| entity(f, ts, &mesh.triangles, npt))
             .collect();
 
-        // Each node on its lowest-dimensional entity.
-        let mut home: Vec<Option<(i32, i32)>> = vec![None; mesh.nodes.len()];
-        for (k, &(node, _)) in mesh.corners.iter().enumerate() {
-            home[node as usize] = Some((0, k as i32 + 1));
-        }
-        for (l, &c) in mesh.line_curves.iter().enumerate() {
-            for &i in mesh.line(l) {
-                home[i as usize].get_or_insert((1, c as i32 + 1));
-            }
-        }
-        for (t, &f) in mesh.faces.iter().enumerate() {
-            for &i in mesh.triangle(t) {
-                home[i as usize].get_or_insert((2, f as i32 + 1));
-            }
-        }
-        // Nodes no element uses still need an entity: a surface of their
-        // own, without a physical group, at the first free tag.
-        if home.iter().any(Option::is_none) {
-            let used: BTreeSet<i32> = surfaces.iter().map(|s| s.tag).collect();
-            let tag = (1..).find(|t| !used.contains(t)).unwrap_or(1);
-            let mut bounds = Bounds::EMPTY;
-            for (i, h) in home.iter_mut().enumerate() {
-                if h.is_none() {
-                    *h = Some((2, tag));
-                    bounds.add(mesh.nodes[i]);
-                }
-            }
-            surfaces.push(Entity {
-                tag,
-                physical: 0,
-                bounds,
-            });
-        }
-        let mut node_blocks: Vec<((i32, i32), std::ops::Range<u32>)> = Vec::new();
-        for (i, h) in home.iter().enumerate() {
-            let (key, i) = (h.unwrap_or((2, 1)), i as u32);
-            match node_blocks.last_mut() {
-                Some((k, run)) if *k == key => run.end = i + 1,
-                _ => node_blocks.push((key, i..i + 1)),
-            }
-        }
+        let node_blocks = node_blocks(mesh, &mut surfaces);
         Layout {
             curves,
             surfaces,
@@ -162,6 +122,57 @@ impl Layout {
             tris_by_face,
         }
     }
+}
+
+/// Each node on its lowest-dimensional entity (nodes no element uses on a
+/// surface of their own, added to `surfaces`), as runs of consecutive
+/// node indices.
+fn node_blocks(
+    mesh: &LagrangeMesh,
+    surfaces: &mut Vec<Entity>,
+) -> Vec<((i32, i32), std::ops::Range<u32>)> {
+    // Each node on its lowest-dimensional entity.
+    let mut home: Vec<Option<(i32, i32)>> = vec![None; mesh.nodes.len()];
+    for (k, &(node, _)) in mesh.corners.iter().enumerate() {
+        home[node as usize] = Some((0, k as i32 + 1));
+    }
+    for (l, &c) in mesh.line_curves.iter().enumerate() {
+        for &i in mesh.line(l) {
+            home[i as usize].get_or_insert((1, c as i32 + 1));
+        }
+    }
+    for (t, &f) in mesh.faces.iter().enumerate() {
+        for &i in mesh.triangle(t) {
+            home[i as usize].get_or_insert((2, f as i32 + 1));
+        }
+    }
+    // Nodes no element uses still need an entity: a surface of their
+    // own, without a physical group, at the first free tag.
+    if home.iter().any(Option::is_none) {
+        let used: BTreeSet<i32> = surfaces.iter().map(|s| s.tag).collect();
+        let tag = (1..).find(|t| !used.contains(t)).unwrap_or(1);
+        let mut bounds = Bounds::EMPTY;
+        for (i, h) in home.iter_mut().enumerate() {
+            if h.is_none() {
+                *h = Some((2, tag));
+                bounds.add(mesh.nodes[i]);
+            }
+        }
+        surfaces.push(Entity {
+            tag,
+            physical: 0,
+            bounds,
+        });
+    }
+    let mut node_blocks: Vec<((i32, i32), std::ops::Range<u32>)> = Vec::new();
+    for (i, h) in home.iter().enumerate() {
+        let (key, i) = (h.unwrap_or((2, 1)), i as u32);
+        match node_blocks.last_mut() {
+            Some((k, run)) if *k == key => run.end = i + 1,
+            _ => node_blocks.push((key, i..i + 1)),
+        }
+    }
+    node_blocks
 }
 
 /// Writes the MSH 4.1 items one at a time, as text (space-separated,
@@ -240,15 +251,23 @@ impl<W: Write> Out<'_, W> {
     }
 }
 
+/// The file, section by section.
 fn write_file<W: Write>(
     o: &mut Out<W>,
     mesh: &LagrangeMesh,
     layout: &Layout,
 ) -> std::io::Result<()> {
-    let k = mesh.order;
-    let (npt, npl) = (mesh.nodes_per_triangle(), mesh.nodes_per_line());
-    let (ncorners, nlines, ntris) = (mesh.corners.len(), mesh.num_lines(), mesh.num_triangles());
+    write_format(o)?;
+    write_physical_names(o, mesh, layout)?;
+    write_entities(o, mesh, layout)?;
+    write_nodes(o, mesh, layout)?;
+    write_elements(o, mesh, layout)?;
+    write_params(o, mesh)
+}
 
+/// `$MeshFormat`: version 4.1, text or binary (with its endianness
+/// check, the integer 1).
+fn write_format<W: Write>(o: &mut Out<W>) -> std::io::Result<()> {
     o.text("$MeshFormat")?;
     if o.binary {
         o.text("4.1 1 8")?;
@@ -258,7 +277,15 @@ fn write_file<W: Write>(
         o.text("4.1 0 8")?;
     }
     o.text("$EndMeshFormat")?;
+    Ok(())
+}
 
+/// `$PhysicalNames`: corner_i, curve_i and face_i for the groups used.
+fn write_physical_names<W: Write>(
+    o: &mut Out<W>,
+    mesh: &LagrangeMesh,
+    layout: &Layout,
+) -> std::io::Result<()> {
     // Physical names are text in both modes.
     let corner_ids: BTreeSet<u32> = mesh.corners.iter().map(|&(_, id)| id).collect();
     let names = corner_ids.len() + layout.curves.len() + layout.tris_by_face.len();
@@ -276,7 +303,17 @@ fn write_file<W: Write>(
         }
         o.text("$EndPhysicalNames")?;
     }
+    Ok(())
+}
 
+/// `$Entities`: a point per corner, then the curves and surfaces with
+/// their bounds and physical groups.
+fn write_entities<W: Write>(
+    o: &mut Out<W>,
+    mesh: &LagrangeMesh,
+    layout: &Layout,
+) -> std::io::Result<()> {
+    let ncorners = mesh.corners.len();
     o.text("$Entities")?;
     o.size(ncorners as u64)?;
     o.size(layout.curves.len() as u64)?;
@@ -305,7 +342,15 @@ fn write_file<W: Write>(
         o.eol()?;
     }
     o.end("Entities")?;
+    Ok(())
+}
 
+/// `$Nodes`: the node blocks of the layout, tags then coordinates.
+fn write_nodes<W: Write>(
+    o: &mut Out<W>,
+    mesh: &LagrangeMesh,
+    layout: &Layout,
+) -> std::io::Result<()> {
     let n = mesh.nodes.len() as u64;
     o.text("$Nodes")?;
     o.size(layout.node_blocks.len() as u64)?;
@@ -329,7 +374,19 @@ fn write_file<W: Write>(
         }
     }
     o.end("Nodes")?;
+    Ok(())
+}
 
+/// `$Elements`: a point element per corner, then line blocks per curve
+/// and triangle blocks per face, tagged in that order.
+fn write_elements<W: Write>(
+    o: &mut Out<W>,
+    mesh: &LagrangeMesh,
+    layout: &Layout,
+) -> std::io::Result<()> {
+    let k = mesh.order;
+    let (npt, npl) = (mesh.nodes_per_triangle(), mesh.nodes_per_line());
+    let (ncorners, nlines, ntris) = (mesh.corners.len(), mesh.num_lines(), mesh.num_triangles());
     let total = (ncorners + nlines + ntris) as u64;
     let blocks = ncorners + layout.lines_by_curve.len() + layout.tris_by_face.len();
     o.text("$Elements")?;
@@ -383,7 +440,11 @@ fn write_file<W: Write>(
         }
     }
     o.end("Elements")?;
+    Ok(())
+}
 
+/// `$NodeData`: the view of every node's surface parameters, if given.
+fn write_params<W: Write>(o: &mut Out<W>, mesh: &LagrangeMesh) -> std::io::Result<()> {
     if !mesh.params.is_empty() {
         // The header of a view is text in both modes.
         o.text("$NodeData")?;

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::xml::{find, lossy, next_tag, XmlError};
+use super::xml::{find, lossy, next_tag, Tag, XmlError};
 use super::{VtuArray, VtuMesh};
 
 /// A DataArray's values as read, with where it starts.
@@ -25,31 +25,32 @@ enum Parent {
     Other,
 }
 
+/// What the tags held, before the counts are checked against each other.
+#[derive(Default)]
+struct Found {
+    seen_file: bool,
+    /// NumberOfPoints, NumberOfCells and where the Piece starts.
+    piece: Option<(usize, usize, usize)>,
+    point_data: Vec<RawArray>,
+    cell_data: Vec<RawArray>,
+    points: Option<RawArray>,
+    connectivity: Option<RawArray>,
+    offsets: Option<RawArray>,
+    types: Option<RawArray>,
+}
+
+/// The mesh in a `.vtu` file's bytes: the tags walked with a stack of
+/// open ones, the arrays we use kept by their parent, then checked and
+/// built by [`assemble`].
 pub(super) fn parse_xml(data: &[u8]) -> Result<VtuMesh, XmlError> {
     let mut stack: Vec<(&[u8], usize)> = Vec::new();
-    let mut seen_file = false;
-    let mut piece: Option<(usize, usize, usize)> = None; // points, cells, where
-    let (mut point_data, mut cell_data) = (Vec::new(), Vec::new());
-    let mut points: Option<RawArray> = None;
-    let (mut connectivity, mut offsets, mut types) = (None, None, None);
+    let mut found = Found::default();
     let mut pos = 0;
     while let Some(tag) = next_tag(data, pos)? {
         pos = tag.end;
         if tag.closing {
-            match stack.pop() {
-                Some((open, _)) if open == tag.name => continue,
-                Some((open, _)) => {
-                    return Err((
-                        tag.start,
-                        format!(
-                            "</{}> closes <{}>",
-                            lossy(tag.name).trim_matches('"'),
-                            lossy(open).trim_matches('"')
-                        ),
-                    ))
-                }
-                None => return Err((tag.start, "a closing tag with nothing open".into())),
-            }
+            close(&mut stack, &tag)?;
+            continue;
         }
         match tag.name {
             b"VTKFile" => {
@@ -60,24 +61,9 @@ pub(super) fn parse_xml(data: &[u8]) -> Result<VtuMesh, XmlError> {
                         format!("a VTK {ty:?} file; only UnstructuredGrid (.vtu) is read"),
                     ));
                 }
-                seen_file = true;
+                found.seen_file = true;
             }
-            b"Piece" => {
-                if piece.is_some() {
-                    return Err((
-                        tag.start,
-                        "a second Piece: only single-piece files are read (merge blocks in ParaView first)"
-                            .into(),
-                    ));
-                }
-                let count = |name: &str| -> Result<usize, XmlError> {
-                    let v = tag.attr(name).unwrap_or("0");
-                    v.trim()
-                        .parse()
-                        .map_err(|_| (tag.start, format!("Piece {name}={v:?} is not a count")))
-                };
-                piece = Some((count("NumberOfPoints")?, count("NumberOfCells")?, tag.start));
-            }
+            b"Piece" => found.piece(&tag)?,
             b"AppendedData" => {
                 return Err((
                     tag.start,
@@ -87,58 +73,9 @@ pub(super) fn parse_xml(data: &[u8]) -> Result<VtuMesh, XmlError> {
                 ))
             }
             b"DataArray" => {
-                let parent = match stack.last().map(|&(n, _)| n) {
-                    Some(b"PointData") => Parent::PointData,
-                    Some(b"CellData") => Parent::CellData,
-                    Some(b"Points") => Parent::Points,
-                    Some(b"Cells") => Parent::Cells,
-                    _ => Parent::Other,
-                };
-                let name = tag.attr("Name").unwrap_or("").to_string();
-                let format = tag.attr("format").unwrap_or("ascii");
-                if format != "ascii" {
-                    return Err((
-                        tag.start,
-                        format!(
-                            "DataArray {name:?} is {format}: only ASCII .vtu files are read; \
-                             save as ASCII (ParaView: File > Save Data, Data Mode: Ascii)"
-                        ),
-                    ));
-                }
-                let components = match tag.attr("NumberOfComponents") {
-                    None => 1,
-                    Some(c) => c.trim().parse().ok().filter(|&c| c >= 1).ok_or_else(|| {
-                        (
-                            tag.start,
-                            format!("DataArray {name:?}: NumberOfComponents={c:?}"),
-                        )
-                    })?,
-                };
-                let integer = tag.attr("type").is_some_and(|t| t.contains("Int"));
-                let (values, end) = if tag.empty {
-                    (Vec::new(), tag.end)
-                } else {
-                    array_values(data, tag.end, &name, integer)?
-                };
+                let (array, end) = data_array(data, &tag)?;
                 pos = end;
-                let array = RawArray {
-                    name,
-                    components,
-                    values,
-                    at: tag.start,
-                };
-                match parent {
-                    Parent::PointData => point_data.push(array),
-                    Parent::CellData => cell_data.push(array),
-                    Parent::Points => points = Some(array),
-                    Parent::Cells => match array.name.as_str() {
-                        "connectivity" => connectivity = Some(array),
-                        "offsets" => offsets = Some(array),
-                        "types" => types = Some(array),
-                        _ => {}
-                    },
-                    Parent::Other => {}
-                }
+                found.keep(parent_of(&stack), array);
                 continue; // its closing tag is consumed
             }
             _ => {}
@@ -153,23 +90,113 @@ pub(super) fn parse_xml(data: &[u8]) -> Result<VtuMesh, XmlError> {
             format!("<{}> is never closed", lossy(open).trim_matches('"')),
         ));
     }
-    if !seen_file {
+    if !found.seen_file {
         return Err((0, "not a VTK XML file: no <VTKFile> element".into()));
     }
-    let Some((npoints, ncells, piece_at)) = piece else {
-        return Err((data.len(), "no <Piece> element".into()));
+    assemble(found, data.len())
+}
+
+/// Pops the element a closing tag closes; an error if it closes another
+/// one, or none is open.
+fn close(stack: &mut Vec<(&[u8], usize)>, tag: &Tag) -> Result<(), XmlError> {
+    match stack.pop() {
+        Some((open, _)) if open == tag.name => Ok(()),
+        Some((open, _)) => Err((
+            tag.start,
+            format!(
+                "</{}> closes <{}>",
+                lossy(tag.name).trim_matches('"'),
+                lossy(open).trim_matches('"')
+            ),
+        )),
+        None => Err((tag.start, "a closing tag with nothing open".into())),
+    }
+}
+
+/// The tag a DataArray sits in, among those we read.
+fn parent_of(stack: &[(&[u8], usize)]) -> Parent {
+    match stack.last().map(|&(n, _)| n) {
+        Some(b"PointData") => Parent::PointData,
+        Some(b"CellData") => Parent::CellData,
+        Some(b"Points") => Parent::Points,
+        Some(b"Cells") => Parent::Cells,
+        _ => Parent::Other,
+    }
+}
+
+/// The DataArray that `tag` opens, read to its closing tag: the array and
+/// the offset past it.
+fn data_array(data: &[u8], tag: &Tag) -> Result<(RawArray, usize), XmlError> {
+    let name = tag.attr("Name").unwrap_or("").to_string();
+    let format = tag.attr("format").unwrap_or("ascii");
+    if format != "ascii" {
+        return Err((
+            tag.start,
+            format!(
+                "DataArray {name:?} is {format}: only ASCII .vtu files are read; \
+                 save as ASCII (ParaView: File > Save Data, Data Mode: Ascii)"
+            ),
+        ));
+    }
+    let components = match tag.attr("NumberOfComponents") {
+        None => 1,
+        Some(c) => c.trim().parse().ok().filter(|&c| c >= 1).ok_or_else(|| {
+            (
+                tag.start,
+                format!("DataArray {name:?}: NumberOfComponents={c:?}"),
+            )
+        })?,
     };
-    assemble(
-        npoints,
-        ncells,
-        piece_at,
-        points,
-        connectivity,
-        offsets,
-        types,
-        point_data,
-        cell_data,
-    )
+    let integer = tag.attr("type").is_some_and(|t| t.contains("Int"));
+    let (values, end) = if tag.empty {
+        (Vec::new(), tag.end)
+    } else {
+        array_values(data, tag.end, &name, integer)?
+    };
+    let array = RawArray {
+        name,
+        components,
+        values,
+        at: tag.start,
+    };
+    Ok((array, end))
+}
+
+impl Found {
+    /// The Piece's counts; a second Piece is refused.
+    fn piece(&mut self, tag: &Tag) -> Result<(), XmlError> {
+        if self.piece.is_some() {
+            return Err((
+                tag.start,
+                "a second Piece: only single-piece files are read (merge blocks in ParaView first)"
+                    .into(),
+            ));
+        }
+        let count = |name: &str| -> Result<usize, XmlError> {
+            let v = tag.attr(name).unwrap_or("0");
+            v.trim()
+                .parse()
+                .map_err(|_| (tag.start, format!("Piece {name}={v:?} is not a count")))
+        };
+        self.piece = Some((count("NumberOfPoints")?, count("NumberOfCells")?, tag.start));
+        Ok(())
+    }
+
+    /// Keeps an array read inside `parent`, if it is one we use.
+    fn keep(&mut self, parent: Parent, array: RawArray) {
+        match parent {
+            Parent::PointData => self.point_data.push(array),
+            Parent::CellData => self.cell_data.push(array),
+            Parent::Points => self.points = Some(array),
+            Parent::Cells => match array.name.as_str() {
+                "connectivity" => self.connectivity = Some(array),
+                "offsets" => self.offsets = Some(array),
+                "types" => self.types = Some(array),
+                _ => {}
+            },
+            Parent::Other => {}
+        }
+    }
 }
 
 /// The numbers of a DataArray whose content starts at `from`, up to its
@@ -237,21 +264,14 @@ fn array_values(
     }
 }
 
-/// Checks counts and indices and builds the mesh.
-#[allow(clippy::too_many_arguments)]
-fn assemble(
-    npoints: usize,
-    ncells: usize,
-    piece_at: usize,
-    points: Option<RawArray>,
-    connectivity: Option<RawArray>,
-    offsets: Option<RawArray>,
-    types: Option<RawArray>,
-    point_data: Vec<RawArray>,
-    cell_data: Vec<RawArray>,
-) -> Result<VtuMesh, XmlError> {
+/// Checks counts and indices and builds the mesh; `len` is the file's
+/// length (where a missing Piece is reported).
+fn assemble(found: Found, len: usize) -> Result<VtuMesh, XmlError> {
+    let Some((npoints, ncells, piece_at)) = found.piece else {
+        return Err((len, "no <Piece> element".into()));
+    };
     let mut mesh = VtuMesh::default();
-    match points {
+    match found.points {
         Some(p) if p.components == 3 && p.values.len() == 3 * npoints => {
             mesh.points = p.values.chunks_exact(3).map(DVec3::from_slice).collect();
         }
@@ -284,65 +304,15 @@ fn assemble(
             })
         };
         let (conn, offs, tys) = (
-            need(connectivity, "connectivity")?,
-            need(offsets, "offsets")?,
-            need(types, "types")?,
+            need(found.connectivity, "connectivity")?,
+            need(found.offsets, "offsets")?,
+            need(found.types, "types")?,
         );
-        for a in [&offs, &tys] {
-            if a.values.len() != ncells {
-                return Err((
-                    a.at,
-                    format!(
-                        "{:?} has {} values for NumberOfCells={ncells}",
-                        a.name,
-                        a.values.len()
-                    ),
-                ));
-            }
-        }
-        for (c, &t) in tys.values.iter().enumerate() {
-            if !(0.0..=255.0).contains(&t) {
-                return Err((tys.at, format!("cell {c} has type {t}")));
-            }
-            mesh.cell_types.push(t as u8);
-        }
-        let mut last = 0;
-        for (c, &o) in offs.values.iter().enumerate() {
-            if !(o >= last as f64 && o <= conn.values.len() as f64) {
-                return Err((
-                    offs.at,
-                    format!(
-                        "offset {o} of cell {c} is not between the previous one ({last}) and \
-                         the connectivity's length ({})",
-                        conn.values.len()
-                    ),
-                ));
-            }
-            last = o as usize;
-            mesh.offsets.push(last);
-        }
-        if last != conn.values.len() {
-            return Err((
-                offs.at,
-                format!(
-                    "the offsets end at {last}, the connectivity has {} values",
-                    conn.values.len()
-                ),
-            ));
-        }
-        for (k, &i) in conn.values.iter().enumerate() {
-            if !(i >= 0.0 && i < npoints as f64) {
-                return Err((
-                    conn.at,
-                    format!("connectivity entry {k} is point {i}, but there are {npoints} points"),
-                ));
-            }
-            mesh.connectivity.push(i as u32);
-        }
+        cells(&mut mesh, npoints, ncells, conn, offs, tys)?;
     }
     for (arrays, n, kind, out) in [
-        (point_data, npoints, "point", &mut mesh.point_data),
-        (cell_data, ncells, "cell", &mut mesh.cell_data),
+        (found.point_data, npoints, "point", &mut mesh.point_data),
+        (found.cell_data, ncells, "cell", &mut mesh.cell_data),
     ] {
         for a in arrays {
             if a.values.len() != a.components * n {
@@ -365,4 +335,69 @@ fn assemble(
         }
     }
     Ok(mesh)
+}
+
+/// The cells' types, offsets and connectivity into `mesh`, each checked:
+/// one type and offset per cell, offsets rising to the connectivity's
+/// end, every entry a point.
+fn cells(
+    mesh: &mut VtuMesh,
+    npoints: usize,
+    ncells: usize,
+    conn: RawArray,
+    offs: RawArray,
+    tys: RawArray,
+) -> Result<(), XmlError> {
+    for a in [&offs, &tys] {
+        if a.values.len() != ncells {
+            return Err((
+                a.at,
+                format!(
+                    "{:?} has {} values for NumberOfCells={ncells}",
+                    a.name,
+                    a.values.len()
+                ),
+            ));
+        }
+    }
+    for (c, &t) in tys.values.iter().enumerate() {
+        if !(0.0..=255.0).contains(&t) {
+            return Err((tys.at, format!("cell {c} has type {t}")));
+        }
+        mesh.cell_types.push(t as u8);
+    }
+    let mut last = 0;
+    for (c, &o) in offs.values.iter().enumerate() {
+        if !(o >= last as f64 && o <= conn.values.len() as f64) {
+            return Err((
+                offs.at,
+                format!(
+                    "offset {o} of cell {c} is not between the previous one ({last}) and \
+                     the connectivity's length ({})",
+                    conn.values.len()
+                ),
+            ));
+        }
+        last = o as usize;
+        mesh.offsets.push(last);
+    }
+    if last != conn.values.len() {
+        return Err((
+            offs.at,
+            format!(
+                "the offsets end at {last}, the connectivity has {} values",
+                conn.values.len()
+            ),
+        ));
+    }
+    for (k, &i) in conn.values.iter().enumerate() {
+        if !(i >= 0.0 && i < npoints as f64) {
+            return Err((
+                conn.at,
+                format!("connectivity entry {k} is point {i}, but there are {npoints} points"),
+            ));
+        }
+        mesh.connectivity.push(i as u32);
+    }
+    Ok(())
 }

@@ -75,56 +75,23 @@ impl VtuMesh {
     /// writes, so its files come back identical but for the corners'
     /// order.
     pub fn to_lagrange(&self) -> Result<LagrangeMesh> {
-        let bad = |message: String| Err(Error::InvalidArgument(message));
         let mut order = None;
         let mut mesh = LagrangeMesh {
             nodes: self.points.clone(),
             ..Default::default()
         };
-        // A whole, non-negative id from a one-component array.
-        let id_of = |array: Option<&VtuArray>, what: &str, i: usize| -> Result<u32> {
-            let Some(a) = array else { return Ok(0) };
-            let x = a.values[i * a.components];
-            if x >= 0.0 && x <= u32::MAX as f64 && x.fract() == 0.0 {
-                Ok(x as u32)
-            } else {
-                Err(Error::InvalidArgument(format!(
-                    "{what} {i}: array {:?} gives {x}, not an id",
-                    a.name
-                )))
-            }
-        };
         let (face, curve) = (self.cell_array("face"), self.cell_array("curve"));
         for c in 0..self.num_cells() {
             let (ty, nodes) = self.cell(c);
-            let n = nodes.len();
-            let (is_triangle, k) = match ty {
-                VTK_TRIANGLE if n == 3 => (true, Some(1)),
-                VTK_QUADRATIC_TRIANGLE if n == 6 => (true, Some(2)),
-                VTK_LAGRANGE_TRIANGLE => (true, triangle_order(n)),
-                VTK_LINE if n == 2 => (false, Some(1)),
-                VTK_QUADRATIC_EDGE if n == 3 => (false, Some(2)),
-                VTK_CUBIC_LINE if n == 4 => (false, Some(3)),
-                VTK_LAGRANGE_CURVE if (2..=5).contains(&n) => (false, Some(n - 1)),
-                VTK_TRIANGLE
-                | VTK_QUADRATIC_TRIANGLE
-                | VTK_LINE
-                | VTK_QUADRATIC_EDGE
-                | VTK_CUBIC_LINE
-                | VTK_LAGRANGE_CURVE => (false, None),
-                _ => continue,
-            };
-            let Some(k) = k else {
-                return bad(format!(
-                    "cell {c} of type {ty} has {n} points, which is no Lagrange cell of order 1 to 4"
-                ));
+            let Some((is_triangle, k)) = lagrange_cell(c, ty, nodes.len())? else {
+                continue;
             };
             if *order.get_or_insert(k) != k {
-                return bad(format!(
+                return Err(Error::InvalidArgument(format!(
                     "cell {c} is of order {k}, but the mesh is of order {}: \
                      a Lagrange mesh has one order",
                     order.unwrap_or(k)
-                ));
+                )));
             }
             if is_triangle {
                 mesh.triangles.extend_from_slice(nodes);
@@ -145,10 +112,10 @@ impl VtuMesh {
         }
         if let Some(params) = self.point_array("loopsurf_params") {
             if params.components != 3 {
-                return bad(format!(
+                return Err(Error::InvalidArgument(format!(
                     "point array \"loopsurf_params\" has {} components; (triangle, v, w) needs 3",
                     params.components
-                ));
+                )));
             }
             for (i, p) in params.values.chunks_exact(3).enumerate() {
                 let t = id_of(Some(params), "point", i)?;
@@ -157,6 +124,50 @@ impl VtuMesh {
         }
         mesh.validate()?;
         Ok(mesh)
+    }
+}
+
+/// Cell c of VTK type `ty` with n points as a Lagrange cell: whether it is
+/// a triangle (else a line) and its order; `None` for a type that is
+/// neither, an error for a triangle or line type with a count no order
+/// has.
+fn lagrange_cell(c: usize, ty: u8, n: usize) -> Result<Option<(bool, usize)>> {
+    let (is_triangle, k) = match ty {
+        VTK_TRIANGLE if n == 3 => (true, Some(1)),
+        VTK_QUADRATIC_TRIANGLE if n == 6 => (true, Some(2)),
+        VTK_LAGRANGE_TRIANGLE => (true, triangle_order(n)),
+        VTK_LINE if n == 2 => (false, Some(1)),
+        VTK_QUADRATIC_EDGE if n == 3 => (false, Some(2)),
+        VTK_CUBIC_LINE if n == 4 => (false, Some(3)),
+        VTK_LAGRANGE_CURVE if (2..=5).contains(&n) => (false, Some(n - 1)),
+        VTK_TRIANGLE
+        | VTK_QUADRATIC_TRIANGLE
+        | VTK_LINE
+        | VTK_QUADRATIC_EDGE
+        | VTK_CUBIC_LINE
+        | VTK_LAGRANGE_CURVE => (false, None),
+        _ => return Ok(None),
+    };
+    let Some(k) = k else {
+        return Err(Error::InvalidArgument(format!(
+            "cell {c} of type {ty} has {n} points, which is no Lagrange cell of order 1 to 4"
+        )));
+    };
+    Ok(Some((is_triangle, k)))
+}
+
+/// A whole, non-negative id from entry i of a one-component array (0
+/// without the array); `what` names the entry in the error.
+fn id_of(array: Option<&VtuArray>, what: &str, i: usize) -> Result<u32> {
+    let Some(a) = array else { return Ok(0) };
+    let x = a.values[i * a.components];
+    if x >= 0.0 && x <= u32::MAX as f64 && x.fract() == 0.0 {
+        Ok(x as u32)
+    } else {
+        Err(Error::InvalidArgument(format!(
+            "{what} {i}: array {:?} gives {x}, not an id",
+            a.name
+        )))
     }
 }
 

@@ -150,128 +150,19 @@ impl SurfaceMesh {
     /// doc for where the nodes go. The vertices stay the first nodes, in
     /// order, bit for bit.
     pub fn raise_order(&self, surface: &Surface, order: usize) -> Result<CurvedMesh> {
-        if !(1..=MAX_ORDER).contains(&order) {
-            return Err(Error::InvalidArgument(format!(
-                "order {order}: must be 1 to {MAX_ORDER}"
-            )));
-        }
-        // The fields are public: a mesh put together by hand is checked
-        // before it is indexed (parameters and indices by curve_edges).
-        let counts = [
-            ("params", self.params.len(), self.points.len(), "points"),
-            ("faces", self.faces.len(), self.triangles.len(), "triangles"),
-        ];
-        for (what, n, want, of) in counts {
-            if n != want {
-                return Err(Error::InvalidArgument(format!(
-                    "{n} {what} for {want} {of}"
-                )));
-            }
-        }
-        if !self.charts.is_empty() && self.charts.len() != self.triangles.len() {
-            return Err(Error::InvalidArgument(format!(
-                "{} charts for {} triangles (give one per triangle, or none)",
-                self.charts.len(),
-                self.triangles.len()
-            )));
-        }
+        self.check_raisable(order)?;
         let curve_edges = self.curve_edges(surface)?;
         let k = order;
         let placer = Placer {
             surface,
             mesh: self,
         };
-
-        // Unique edges, each from its lower vertex to its higher.
-        let mut sides: Vec<(u64, u32)> = Vec::with_capacity(3 * self.triangles.len());
-        for (t, tri) in self.triangles.iter().enumerate() {
-            for s in 0..3 {
-                let (a, b) = (tri[s] as u64, tri[(s + 1) % 3] as u64);
-                sides.push(((a.min(b) << 32) | a.max(b), t as u32));
-            }
-        }
-        sides.sort_unstable();
-        sides.dedup_by_key(|s| s.0);
-        let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
-        let edge_of = |a: u32, b: u32| {
-            sides
-                .binary_search_by_key(&key(a, b), |s| s.0)
-                .expect("every side was listed")
-        };
-        // Hard edges: their curve and the t of the lower and higher vertex.
-        let mut hard: Vec<Option<(u32, [f64; 2])>> = vec![None; sides.len()];
-        for ((&[a, b], &c), &[ta, tb]) in curve_edges
-            .pairs
-            .iter()
-            .zip(&curve_edges.curves)
-            .zip(&curve_edges.params)
-        {
-            let n = surface.model().curves()[c as usize].len() as f64;
-            // A closed curve's edge across its start runs from t near n
-            // to t near 0: continue past n instead.
-            let tb = if tb < ta { tb + n } else { tb };
-            let ts = if a < b { [ta, tb] } else { [tb, ta] };
-            hard[edge_of(a, b)] = Some((c, ts));
-        }
-
-        let inner = k.saturating_sub(1);
-        // The indices, among the edge nodes, of edge (a, b)'s inner nodes
-        // from a to b (they are stored from the lower vertex to the higher).
-        let along = |a: u32, b: u32| {
-            let first = edge_of(a, b) * inner;
-            (0..inner).map(move |i| {
-                if a < b {
-                    first + i
-                } else {
-                    first + inner - 1 - i
-                }
-            })
-        };
-        let edge_nodes: Vec<Node> = sides
-            .par_iter()
-            .zip(hard.par_iter())
-            .map(|(&(key, t), hard)| {
-                let (a, b) = ((key >> 32) as u32, key as u32);
-                (1..k)
-                    .map(|i| {
-                        let s = i as f64 / k as f64;
-                        match hard {
-                            Some((c, ts)) => placer.on_curve(*c, *ts, s, [a, b]),
-                            None => placer.between(&[a, b], &[1.0 - s, s], t as usize, None),
-                        }
-                    })
-                    .collect::<Result<Vec<Node>>>()
-            })
-            .collect::<Result<Vec<_>>>()?
-            .into_iter()
-            .flatten()
-            .collect();
-
+        let edges = Edges::new(&self.triangles, k);
+        let hard = hard_edges(surface, &edges, &curve_edges);
+        let edge_nodes = edge_nodes(&placer, &edges, &hard, k)?;
         let lattice = lagrange::lattice(k);
         let interior = &lattice[(3 * k).min(lattice.len())..];
-        let interior_nodes: Vec<Node> = (0..self.triangles.len())
-            .into_par_iter()
-            .map(|t| {
-                let tri = self.triangles[t];
-                // The element's edge nodes so far, in its own order.
-                let mut boundary: Vec<DVec3> =
-                    tri.iter().map(|&v| self.points[v as usize]).collect();
-                for s in 0..3 {
-                    boundary.extend(along(tri[s], tri[(s + 1) % 3]).map(|i| edge_nodes[i].0));
-                }
-                interior
-                    .iter()
-                    .map(|&[i, j]| {
-                        let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
-                        let target = lagrange::interior_from_boundary(k, &boundary, [i, j]);
-                        placer.between(&tri, &[1.0 - x - y, x, y], t, target)
-                    })
-                    .collect::<Result<Vec<Node>>>()
-            })
-            .collect::<Result<Vec<_>>>()?
-            .into_iter()
-            .flatten()
-            .collect();
+        let interior_nodes = self.interior_nodes(&placer, &edges, &edge_nodes, interior, k)?;
 
         let nv = self.points.len();
         let edge_base = nv;
@@ -281,7 +172,8 @@ impl SurfaceMesh {
         for (t, tri) in self.triangles.iter().enumerate() {
             triangles.extend(tri);
             for s in 0..3 {
-                triangles.extend(along(tri[s], tri[(s + 1) % 3]).map(|i| (edge_base + i) as u32));
+                let along = edges.along(tri[s], tri[(s + 1) % 3]);
+                triangles.extend(along.map(|i| (edge_base + i) as u32));
             }
             let first = interior_base + t * interior.len();
             triangles.extend((first..first + interior.len()).map(|i| i as u32));
@@ -289,7 +181,7 @@ impl SurfaceMesh {
         let mut lines = Vec::with_capacity((k + 1) * curve_edges.pairs.len());
         for &[a, b] in &curve_edges.pairs {
             lines.extend([a, b]);
-            lines.extend(along(a, b).map(|i| (edge_base + i) as u32));
+            lines.extend(edges.along(a, b).map(|i| (edge_base + i) as u32));
         }
 
         let mut nodes = self.points.clone();
@@ -311,6 +203,176 @@ impl SurfaceMesh {
             diagonal: self.diagonal,
         })
     }
+
+    /// Refuses an order out of range and, as the fields are public (a mesh
+    /// put together by hand is checked before it is indexed), counts that
+    /// do not match; parameters and indices are checked by
+    /// [`SurfaceMesh::curve_edges`].
+    fn check_raisable(&self, order: usize) -> Result<()> {
+        if !(1..=MAX_ORDER).contains(&order) {
+            return Err(Error::InvalidArgument(format!(
+                "order {order}: must be 1 to {MAX_ORDER}"
+            )));
+        }
+        let counts = [
+            ("params", self.params.len(), self.points.len(), "points"),
+            ("faces", self.faces.len(), self.triangles.len(), "triangles"),
+        ];
+        for (what, n, want, of) in counts {
+            if n != want {
+                return Err(Error::InvalidArgument(format!(
+                    "{n} {what} for {want} {of}"
+                )));
+            }
+        }
+        if !self.charts.is_empty() && self.charts.len() != self.triangles.len() {
+            return Err(Error::InvalidArgument(format!(
+                "{} charts for {} triangles (give one per triangle, or none)",
+                self.charts.len(),
+                self.triangles.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// The interior nodes of every element, triangle by triangle, each
+    /// placed from its lattice point and its element's boundary nodes.
+    fn interior_nodes(
+        &self,
+        placer: &Placer,
+        edges: &Edges,
+        edge_nodes: &[Node],
+        interior: &[[usize; 2]],
+        k: usize,
+    ) -> Result<Vec<Node>> {
+        Ok((0..self.triangles.len())
+            .into_par_iter()
+            .map(|t| {
+                let tri = self.triangles[t];
+                // The element's edge nodes so far, in its own order.
+                let mut boundary: Vec<DVec3> =
+                    tri.iter().map(|&v| self.points[v as usize]).collect();
+                for s in 0..3 {
+                    let along = edges.along(tri[s], tri[(s + 1) % 3]);
+                    boundary.extend(along.map(|i| edge_nodes[i].0));
+                }
+                interior
+                    .iter()
+                    .map(|&[i, j]| {
+                        let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
+                        let target = lagrange::interior_from_boundary(k, &boundary, [i, j]);
+                        placer.between(&tri, &[1.0 - x - y, x, y], t, target)
+                    })
+                    .collect::<Result<Vec<Node>>>()
+            })
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect())
+    }
+}
+
+/// The mesh's unique edges, each from its lower vertex to its higher, with
+/// a triangle of each, and where their inner nodes lie among the edge
+/// nodes.
+struct Edges {
+    /// (lower << 32 | higher, a triangle on it), sorted.
+    sides: Vec<(u64, u32)>,
+    /// Inner nodes per edge: the order less one.
+    inner: usize,
+}
+
+impl Edges {
+    fn new(triangles: &[[u32; 3]], order: usize) -> Edges {
+        let mut sides: Vec<(u64, u32)> = Vec::with_capacity(3 * triangles.len());
+        for (t, tri) in triangles.iter().enumerate() {
+            for s in 0..3 {
+                let (a, b) = (tri[s] as u64, tri[(s + 1) % 3] as u64);
+                sides.push(((a.min(b) << 32) | a.max(b), t as u32));
+            }
+        }
+        sides.sort_unstable();
+        sides.dedup_by_key(|s| s.0);
+        Edges {
+            sides,
+            inner: order.saturating_sub(1),
+        }
+    }
+
+    /// The index of edge a–b.
+    fn index(&self, a: u32, b: u32) -> usize {
+        let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+        self.sides
+            .binary_search_by_key(&key, |s| s.0)
+            .expect("every side was listed")
+    }
+
+    /// The indices, among the edge nodes, of edge (a, b)'s inner nodes
+    /// from a to b (they are stored from the lower vertex to the higher).
+    fn along(&self, a: u32, b: u32) -> impl Iterator<Item = usize> {
+        let inner = self.inner;
+        let first = self.index(a, b) * inner;
+        (0..inner).map(move |i| {
+            if a < b {
+                first + i
+            } else {
+                first + inner - 1 - i
+            }
+        })
+    }
+}
+
+/// Per edge, if hard: its curve and the t of its lower and higher vertex.
+fn hard_edges(
+    surface: &Surface,
+    edges: &Edges,
+    curve_edges: &super::CurveEdges,
+) -> Vec<Option<(u32, [f64; 2])>> {
+    let mut hard: Vec<Option<(u32, [f64; 2])>> = vec![None; edges.sides.len()];
+    for ((&[a, b], &c), &[ta, tb]) in curve_edges
+        .pairs
+        .iter()
+        .zip(&curve_edges.curves)
+        .zip(&curve_edges.params)
+    {
+        let n = surface.model().curves()[c as usize].len() as f64;
+        // A closed curve's edge across its start runs from t near n
+        // to t near 0: continue past n instead.
+        let tb = if tb < ta { tb + n } else { tb };
+        let ts = if a < b { [ta, tb] } else { [tb, ta] };
+        hard[edges.index(a, b)] = Some((c, ts));
+    }
+    hard
+}
+
+/// The inner nodes of every edge, edge by edge from its lower vertex: on
+/// its curve if hard, else placed between its ends.
+fn edge_nodes(
+    placer: &Placer,
+    edges: &Edges,
+    hard: &[Option<(u32, [f64; 2])>],
+    k: usize,
+) -> Result<Vec<Node>> {
+    Ok(edges
+        .sides
+        .par_iter()
+        .zip(hard.par_iter())
+        .map(|(&(key, t), hard)| {
+            let (a, b) = ((key >> 32) as u32, key as u32);
+            (1..k)
+                .map(|i| {
+                    let s = i as f64 / k as f64;
+                    match hard {
+                        Some((c, ts)) => placer.on_curve(*c, *ts, s, [a, b]),
+                        None => placer.between(&[a, b], &[1.0 - s, s], t as usize, None),
+                    }
+                })
+                .collect::<Result<Vec<Node>>>()
+        })
+        .collect::<Result<Vec<_>>>()?
+        .into_iter()
+        .flatten()
+        .collect())
 }
 
 /// The vertices at model corners, with their corner ids.

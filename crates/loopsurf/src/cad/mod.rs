@@ -15,7 +15,7 @@
 //! plane; the filleted box is the offset of a box) and share no code with
 //! the subdivision evaluation they measure.
 
-use super::Example;
+use crate::examples::Example;
 use crate::{ControlNet, Result};
 use glam::DVec3;
 

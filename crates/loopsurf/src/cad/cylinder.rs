@@ -7,7 +7,7 @@
 use super::profile::{Piece, Profile, Segment};
 use super::revolved::Revolved;
 use super::tessellate::{angular_steps, revolve, within_chord, zigzag, Ring};
-use super::Example;
+use crate::examples::Example;
 use glam::DVec2;
 
 /// Radius of the cylinder about the z axis.

@@ -2,7 +2,7 @@
 //! deflection, sweep the cuts around an axis, close disks with fans or
 //! strips, and check the result against the tolerance.
 
-use super::super::Example;
+use crate::examples::Example;
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 use std::f64::consts::TAU;

@@ -1,0 +1,79 @@
+//! The mesh being remeshed, and the small queries every pass shares.
+//!
+//! The passes (Botsch & Kobbelt 2004, as in CGAL's and PMP's remeshers)
+//! each have their file: [`super::split`], [`super::collapse`],
+//! [`super::flip`], [`super::relax`], [`super::caps`], [`super::shake`],
+//! with [`super::renumber`] between rounds. The expensive part, placing a
+//! vertex on the surface, runs in parallel over a whole pass's candidates
+//! from the mesh as it was; the changes are then applied one by one, each
+//! checked against the mesh as it is by then ([`super::validity`]).
+
+use super::connectivity::Connectivity;
+use super::vertices::{Placer, Vertex};
+use crate::topology::NONE;
+use glam::DVec3;
+
+/// The mesh being remeshed.
+pub(crate) struct Remeshing<'a> {
+    pub placer: Placer<'a>,
+    pub mesh: Connectivity,
+    pub vertices: Vec<Vertex>,
+    pub size: Vec<f64>,
+    /// [`Connectivity::can_collapse`]'s work space, kept between calls.
+    pub(super) scratch: [Vec<u32>; 2],
+}
+
+/// A vertex about to change: its id and its new state.
+pub(super) type Moved<'v> = Option<(u32, &'v Vertex)>;
+
+impl<'a> Remeshing<'a> {
+    pub fn new(placer: Placer<'a>, mesh: Connectivity, vertices: Vec<Vertex>) -> Remeshing<'a> {
+        let size = vec![f64::INFINITY; vertices.len()];
+        Remeshing {
+            placer,
+            mesh,
+            vertices,
+            size,
+            scratch: [Vec::new(), Vec::new()],
+        }
+    }
+}
+
+impl Remeshing<'_> {
+    /// The target length of edge a–b: the mean of its ends' sizes.
+    pub(super) fn target(&self, a: u32, b: u32) -> f64 {
+        0.5 * (self.size[a as usize] + self.size[b as usize])
+    }
+
+    /// The position of v, or of its new state if it is the one `moved`.
+    pub(super) fn point(&self, v: u32, moved: Moved) -> DVec3 {
+        match moved {
+            Some((m, x)) if m == v => x.x,
+            _ => self.vertices[v as usize].x,
+        }
+    }
+
+    /// The length of h's edge.
+    pub(super) fn length(&self, h: u32) -> f64 {
+        let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+        self.vertices[a as usize]
+            .x
+            .distance(self.vertices[b as usize].x)
+    }
+
+    /// Each live edge once: its half-edge with the larger opposite, or the
+    /// border one.
+    pub(super) fn edges(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.mesh.num_half_edges()).filter(move |&h| {
+            self.mesh.is_alive(h) && {
+                let o = self.mesh.opposite(h);
+                o == NONE || h < o
+            }
+        })
+    }
+
+    /// The face of the triangle of half-edge h.
+    pub(super) fn face(&self, h: u32) -> u32 {
+        self.mesh.face[(h / 3) as usize]
+    }
+}
