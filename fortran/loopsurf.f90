@@ -65,6 +65,12 @@ module loopsurf
         integer(c_size_t) :: max_triangles
     end type
 
+    !> Options of ls_net_fit, the fitted control net.
+    type, bind(C) :: ls_fit_options
+        integer(c_size_t) :: struct_size
+        real(c_double) :: resolution, tolerance
+    end type
+
     !> Options of ls_remesh, the quality remesher.
     type, bind(C) :: ls_remesh_options
         integer(c_size_t) :: struct_size
@@ -154,6 +160,17 @@ module loopsurf
             real(c_double), value :: degrees
             integer(c_size_t), intent(out) :: n
             type(c_ptr), intent(out) :: edges, triangles, turns
+        end function
+        integer(c_int) function ls_fit_options_default(options) bind(C, name="ls_fit_options_default")
+            import :: c_int, ls_fit_options
+            type(ls_fit_options), intent(out) :: options
+        end function
+        ! A new net fitted to the vertices of net (docs/fitting.md).
+        integer(c_int) function ls_net_fit(net, options, out) bind(C, name="ls_net_fit")
+            import :: c_int, c_ptr, ls_fit_options
+            type(c_ptr), value :: net
+            type(ls_fit_options), intent(in) :: options
+            type(c_ptr), intent(out) :: out
         end function
         subroutine ls_net_free(net) bind(C, name="ls_net_free")
             import :: c_ptr

@@ -260,6 +260,7 @@ program test_loopsurf
     close(unit, status="delete")
 
     call test_model()
+    call test_fit()
 
     call ls_version(major, minor, patch)
     call check(major == 1 .and. minor >= 0, "version")
@@ -275,6 +276,25 @@ program test_loopsurf
     print '(a)', "Fortran: all checks passed"
 
 contains
+    ! ls_net_fit on the octahedron with its edges hard: a finer closed net,
+    ! its defaults as documented, a bad resolution refused.
+    subroutine test_fit()
+        type(c_ptr) :: oct, fitted
+        type(ls_fit_options) :: fo
+        integer(c_size_t) :: tagged, fv, ft, fh
+        call check(loopsurf_from_arrays(xyz, tris, oct) == LS_OK, "fit: from_arrays")
+        call check(ls_net_tag_by_angle(oct, 30d0, tagged) == LS_OK .and. tagged == 12, "fit: tag")
+        call check(ls_fit_options_default(fo) == LS_OK .and. fo%resolution == 0.03d0 &
+            .and. fo%tolerance == 1d-4, "fit options")
+        call check(ls_net_fit(oct, fo, fitted) == LS_OK, "fit")
+        call check(ls_net_counts(fitted, fv, ft, fh) == LS_OK .and. fv > 100 .and. ft == 2 * fv - 4 &
+            .and. fh >= 12, "fitted counts")
+        call ls_net_free(fitted)
+        fo%resolution = 2d0
+        call check(ls_net_fit(oct, fo, fitted) == LS_ERR_INVALID_ARGUMENT, "fit: resolution refused")
+        call ls_net_free(oct)
+    end subroutine
+
     ! The model of a unit cube from 1-based arrays, every cube edge hard by
     ! angle (90 > 30 degrees): 6 faces of 2 triangles, each with one loop of
     ! 4 curves, 12 straight curves of one control edge, 8 fixed corners.

@@ -114,7 +114,7 @@ void ls_free_array(void *array);
  * Nets
  *
  * Load or build a control net, repair it explicitly, tag its hard
- * features.
+ * features; fit a new net to a CAD tessellation.
  * ========================================================================== */
 
 // `ls_net_load_with` flag: split polygon faces into triangles (ear
@@ -139,6 +139,21 @@ void ls_free_array(void *array);
 
 // `ls_net_load_with` flags: every repair (the CLI's `--repair`).
 #define LS_LOAD_REPAIR 31
+
+// Options of `ls_net_fit`: fill with `ls_fit_options_default`, then change
+// what you need.
+typedef struct {
+  // `sizeof(ls_fit_options)` as the caller was compiled with.
+  size_t struct_size;
+  // Control-edge length of the fitted net relative to the bounding-box
+  // diagonal, in (0, 1). Default 0.03.
+  double resolution;
+  // The largest distance from the fitted limit surface to an input
+  // vertex, relative to the bounding-box diagonal (> 0); a fit that
+  // misses it fails with LS_ERR_INVALID_ARGUMENT and `ls_last_error`
+  // names the vertex and the distance. Default 1e-4.
+  double tolerance;
+} ls_fit_options;
 
 // Reads and validates a mesh file (.off .obj .ply .stl .tri, by extension)
 // into a new net. Errors name the file and, for text formats, the line.
@@ -203,6 +218,24 @@ int ls_net_folds(const ls_net *net,
 
 // Frees a net (NULL is ignored). Surfaces built from it stay valid.
 void ls_net_free(ls_net *net);
+
+// Writes the default options of `ls_net_fit` into `options`.
+int ls_fit_options_default(ls_fit_options *options);
+
+// A new control net whose (approximating) limit surface passes within
+// the tolerance of every vertex of `net`, for CAD tessellations whose own
+// limit surface shrinks the shape: `net`'s surface remeshed into
+// well-shaped triangles at the resolution, its hard edges and corners
+// carried over as tags of the new net (so its creases lie on `net`'s
+// feature lines), and the control points solved for in a few rounds of
+// least squares with a fairness term and parameter correction (see
+// docs/fitting.md). Tag `net`'s hard edges first (`ls_net_tag_by_angle`).
+// `options` may be NULL for the defaults.
+//
+// On success `*out` is the new net (release it with `ls_net_free`; build
+// its surface with `ls_surface_build`). A tolerance the fit cannot meet
+// is LS_ERR_INVALID_ARGUMENT, never a worse net.
+int ls_net_fit(const ls_net *net, const ls_fit_options *options, ls_net **out);
 
 /* ==========================================================================
  * Surfaces

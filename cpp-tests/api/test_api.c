@@ -1293,6 +1293,48 @@ static void test_mesh_curve(void) {
     ls_surface_free(surface);
 }
 
+/* ls_net_fit: a new net whose limit passes within the tolerance of every
+ * vertex; the defaults as documented; refusals name their field and leave
+ * the output untouched. */
+static void test_fit(void) {
+    ls_net* net = NULL;
+    ls_surface* s = octahedron(&net);
+    ls_surface_free(s);
+    EXPECT(ls_net_tag_by_angle(net, 30, NULL), LS_OK);
+    ls_fit_options o;
+    EXPECT(ls_fit_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.resolution == 0.03 && o.tolerance == 1e-4);
+    ls_net* fitted = NULL;
+    EXPECT(ls_net_fit(net, NULL, &fitted), LS_OK);
+    size_t nv = 0, nt = 0, nh = 0;
+    EXPECT(ls_net_counts(fitted, &nv, &nt, &nh), LS_OK);
+    CHECK(nv > 100 && nt == 2 * nv - 4 && nh >= 12);
+    /* Every octahedron vertex is a corner of the fitted surface: on it. */
+    ls_surface* surface = NULL;
+    EXPECT(ls_surface_build(fitted, &surface), LS_OK);
+    for (int i = 0; i < 6; i++) {
+        ls_snap_result r;
+        r.struct_size = sizeof r;
+        EXPECT(ls_snap_certified(surface, OCTA_XYZ + 3 * i, NULL, &r), LS_OK);
+        CHECK(r.distance <= 1e-4 * 2 * sqrt(3.0));
+    }
+    ls_surface_free(surface);
+    ls_net_free(fitted);
+
+    ls_net* const untouched = (ls_net*)&SENTINEL;
+    fitted = untouched;
+    o.resolution = 2;
+    EXPECT(ls_net_fit(net, &o, &fitted), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "resolution") != NULL && fitted == untouched);
+    o.resolution = 0.03;
+    o.tolerance = -1;
+    EXPECT(ls_net_fit(net, &o, &fitted), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "tolerance") != NULL && fitted == untouched);
+    EXPECT(ls_net_fit(NULL, &o, &fitted), LS_ERR_NULL_POINTER);
+    CHECK(fitted == untouched);
+    ls_net_free(net);
+}
+
 int main(int argc, char** argv) {
     const char* data_dir = argc > 1 ? argv[1] : ".";
     CHECK(strcmp(ls_last_error(), "") == 0); /* nothing failed yet on this thread */
@@ -1313,6 +1355,7 @@ int main(int argc, char** argv) {
     test_mesh_curve();
     test_adapt();
     test_streams();
+    test_fit();
     const char* names[] = {"api_test.xyz", "api_test_bad.off", "api_test_trunc.off", "api_test_nm.off",
                            "api_test_flat.off", "api_shuffled.off"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++) remove(scratch(names[i]));

@@ -27,6 +27,7 @@ mod handles;
 pub mod adapt;
 pub mod closest;
 pub mod evaluate;
+pub mod fit;
 pub mod mesh;
 pub mod mesh_curve;
 pub mod mesh_labels;

@@ -19,8 +19,8 @@ const SECTIONS: &[(&str, &str, &[&str])] = &[
     ),
     (
         "Nets",
-        "Load or build a control net, repair it explicitly, tag its hard features.",
-        &["net.rs"],
+        "Load or build a control net, repair it explicitly, tag its hard features; fit a new net to a CAD tessellation.",
+        &["net.rs", "fit.rs"],
     ),
     (
         "Surfaces",
