@@ -19,8 +19,8 @@ const SECTIONS: &[(&str, &str, &[&str])] = &[
     ),
     (
         "Nets",
-        "Load or build a control net, repair it explicitly, tag its hard features.",
-        &["net.rs"],
+        "Load or build a control net, repair it explicitly, tag its hard features, partition its triangles for parallel runs.",
+        &["net.rs", "partition.rs"],
     ),
     (
         "Surfaces",
