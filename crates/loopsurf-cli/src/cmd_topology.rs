@@ -7,7 +7,7 @@
 //! loop; the n + 1 control vertices in parameter order, a closed loop
 //! repeating its first), then per face `face ID triangles N loops L`.
 
-use crate::input::Input;
+use crate::input::{FitOptions, Input};
 use loopsurf::io::{self, DataArray};
 use loopsurf::model::Model;
 use loopsurf::Error;
@@ -17,6 +17,8 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     #[command(flatten)]
     input: Input,
+    #[command(flatten)]
+    fit: FitOptions,
     /// Also write the control net as a .vtu: per triangle its `face`, one
     /// line cell per hard edge with its `edge` (curve) id, per vertex its
     /// `corner` id (-1 where none applies).
@@ -37,7 +39,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         }
         io::check_writable(path)?;
     }
-    let net = args.input.load()?;
+    let net = args.fit.apply(args.input.load()?)?;
     let model = Model::new(net.topology(), net.features());
     if let Some(path) = &args.output {
         write_vtu(path, &net, &model)?;

@@ -197,8 +197,42 @@ pub struct SurfaceOptions {
     /// control points whose smooth limit surface interpolates) or
     /// `displacement` (the approximating surface plus a linear correction
     /// per triangle; C0 across edges).
-    #[arg(long, value_enum, value_name = "HOW")]
+    #[arg(long, value_enum, value_name = "HOW", conflicts_with = "fit")]
     interpolate: Option<Interpolate>,
+    #[command(flatten)]
+    fit: FitOptions,
+}
+
+/// `--fit`: the commands work on the fitted control net (`loopsurf fit`)
+/// instead of the mesh itself; triangle indices then refer to it.
+#[derive(clap::Args, Debug)]
+pub struct FitOptions {
+    /// Fit a new control net to the mesh's vertices first (as `loopsurf
+    /// fit` does) and use its surface; triangle indices refer to the
+    /// fitted net. Its report goes to stderr.
+    #[arg(long)]
+    fit: bool,
+    /// With --fit: the fitted net's control-edge length, model units.
+    #[arg(long, value_name = "H", requires = "fit")]
+    fit_resolution: Option<f64>,
+    /// With --fit: the largest distance to an input vertex, as a fraction of
+    /// the bounding-box diagonal (default 1e-4).
+    #[arg(long, value_name = "EPS", requires = "fit")]
+    fit_tolerance: Option<f64>,
+}
+
+impl FitOptions {
+    /// The fitted net of `net` with --fit, else `net` itself.
+    pub fn apply(&self, net: ControlNet) -> Result<ControlNet, Error> {
+        if !self.fit {
+            return Ok(net);
+        }
+        let fit = crate::cmd_fit::fit(&net, self.fit_resolution, self.fit_tolerance)?;
+        for line in crate::cmd_fit::report_lines(&fit) {
+            eprintln!("loopsurf: fit: {line}");
+        }
+        Ok(fit.net)
+    }
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -208,8 +242,12 @@ enum Interpolate {
 }
 
 impl SurfaceOptions {
-    /// Builds the surface of `net` in the chosen mode.
+    /// Builds the surface of `net` in the chosen mode (of the fitted net
+    /// with --fit).
     pub fn build(&self, net: &ControlNet) -> Result<Surface, Error> {
+        if self.fit.fit {
+            return Surface::new(&self.fit.apply(net.clone())?);
+        }
         let mode = match self.interpolate {
             None => SurfaceMode::Approximating,
             Some(Interpolate::Solve) => SurfaceMode::Solve,

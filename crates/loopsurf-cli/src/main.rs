@@ -4,6 +4,7 @@
 mod cmd_adapt;
 mod cmd_curve;
 mod cmd_eval;
+mod cmd_fit;
 mod cmd_hard_edges;
 mod cmd_info;
 mod cmd_interpolate;
@@ -42,6 +43,9 @@ enum Command {
     Eval(cmd_eval::Args),
     /// Solves for control points whose limit surface passes through the mesh's points; writes them and a fairness report.
     Interpolate(cmd_interpolate::Args),
+    /// Fits a new, well-shaped control net whose limit surface passes within a tolerance of the mesh's vertices,
+    /// creases on its feature lines; writes it with its hard edges and prints the fit's report.
+    Fit(cmd_fit::Args),
     /// The surface mesher: a triangulation of the limit surface within a tolerance, hard edges kept;
     /// curved (P2–P4) with --order.
     Mesh(cmd_mesh::Args),
@@ -102,6 +106,7 @@ fn main() -> ExitCode {
         Command::Adapt(args) => cmd_adapt::run(args),
         Command::Eval(args) => cmd_eval::run(args),
         Command::Interpolate(args) => cmd_interpolate::run(args),
+        Command::Fit(args) => cmd_fit::run(args),
         Command::Snap(args) => cmd_snap::run(args),
         Command::Mesh(args) => cmd_mesh::run(args),
         Command::Curve(args) => cmd_curve::run(args),

@@ -114,6 +114,14 @@ pub enum Error {
         limit: usize,
         message: String,
     },
+    /// A fitted surface that misses its tolerance: the input vertex
+    /// farthest from it and the distance, both relative to the diagonal.
+    #[error("the fitted surface misses the tolerance {tolerance:.1e} (of the diagonal) by {:.1}×: input vertex {vertex} is {distance:.2e} from it; a smaller --resolution gives the fit more control points", distance / tolerance)]
+    FitTolerance {
+        vertex: usize,
+        distance: f64,
+        tolerance: f64,
+    },
     /// An error met while doing a larger task, which `context` names; its
     /// kind is the source's ([`Error::root`] strips this wrapper).
     #[error("{context}: {source}")]

@@ -32,6 +32,8 @@
 //!    remesher that starts from it), [`adapt`] (adaptive Loop subdivision,
 //!    after Liu and Kondo) and [`fairness`] (how far the interpolating
 //!    surface departs from the approximating one).
+//! 8. Surrogates: [`fit`] (a new control net whose limit surface fits the
+//!    input's vertices and feature lines, started from the remesher).
 //!
 //! No module adds methods to another module's type (checked too), so a
 //! type's methods are all in its own module and a module's uses show in
@@ -48,6 +50,7 @@ pub(crate) mod eval;
 pub mod examples;
 pub mod fairness;
 pub mod features;
+pub mod fit;
 pub mod folds;
 pub mod geometry;
 pub mod interpolate;
@@ -70,6 +73,7 @@ pub use adapt::{Adapter, AdaptiveMesh};
 pub use curve::LimitCurve;
 pub use error::{Element, Error, Result};
 pub use features::{Features, VertexKind};
+pub use fit::{Fit, FitReport, Fitter};
 pub use folds::Fold;
 pub use glam::DVec3;
 pub use mesh::{Density, Mesher, SurfaceMesh};

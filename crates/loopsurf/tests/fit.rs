@@ -1,0 +1,117 @@
+//! The fitted surrogate (`loopsurf::fit`) against the exact surfaces of
+//! the CAD shapes (`loopsurf::cad`), never against the fit's own report.
+//! Bounds are pinned as measured on 2026-12-01 (docs/fitting.md): a change
+//! that makes the fit worse fails here; one that makes it better tightens
+//! them.
+
+use loopsurf::cad::{self, Analytic};
+use loopsurf::{folds, Error, Fitter, Remesher, Surface};
+
+const CHORD: f64 = 5e-4;
+const ANGLE: f64 = 15.0;
+const LATTICE: usize = 6;
+
+fn fitted(shape: &dyn Analytic) -> Surface {
+    let mut net = shape.net().unwrap();
+    net.tag_by_angle(30.0).unwrap();
+    let fit = Fitter::new(&net).tolerance(1.0).run().unwrap();
+    Surface::new(&fit.net).unwrap()
+}
+
+/// On the sphere the fit meets the goals: 5× closer than the facets at
+/// the worst, 10× on average, mean curvature within 5% on average at every
+/// latitude (the valence-75 poles included), no fold, and its surface
+/// remeshes at 1e-4.
+#[test]
+fn sphere_is_closer_than_its_facets() {
+    let shape = cad::sphere(CHORD, ANGLE);
+    let ex = shape.tessellation();
+    let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
+    let surface = fitted(&shape);
+    let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
+    assert!(d.max <= facets.max / 5.0, "{d:?} against {facets:?}");
+    assert!(d.mean <= facets.mean / 10.0, "{d:?} against {facets:?}");
+    // Pinned as measured: 4.0e-5 / 3.9e-6.
+    assert!(d.max <= 4.2e-5 && d.mean <= 4.1e-6, "{d:?}");
+    let k = cad::curvature_error(&shape, &surface, LATTICE, 0.1)
+        .unwrap()
+        .unwrap();
+    assert!(k.mean <= 0.05, "{k:?}");
+    // Pinned as measured: 20.5% / 1.70%.
+    assert!(k.max <= 0.21 && k.mean <= 0.0175, "{k:?}");
+    assert!(folds::folded_patches(&surface).is_empty());
+    let mesh = Remesher::new(&surface).tolerance(1e-4).run().unwrap();
+    assert!(mesh.triangles.len() > 1000);
+    let chord = mesh.deviation.unwrap() / mesh.diagonal;
+    assert!(chord <= 1e-4, "remeshed chord error {chord:e}");
+}
+
+/// The cylinder's rims are fitted by the new net's crease curves: points
+/// of the fitted surface on its hard edges are on the true rims to within
+/// a fifth of the facets' rim polygon; the side, where the input has no
+/// vertex between the rims, is as measured (worse than the facets: the
+/// goal is missed there, docs/fitting.md says why).
+#[test]
+fn cylinder_rims_on_the_true_edges() {
+    let shape = cad::cylinder(CHORD, ANGLE, cad::CapStyle::Fan);
+    let surface = fitted(&shape);
+    let net = surface.net();
+    let features = shape.features();
+    let near = |p| {
+        features
+            .iter()
+            .map(|f| f.distance(p))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let topo = net.topology();
+    let mut worst: f64 = 0.0;
+    for e in 0..topo.num_edges() {
+        if !net.features().is_hard_edge(e) {
+            continue;
+        }
+        let t = topo.edge_triangles()[e][0] as usize;
+        let [a, b] = topo.edges()[e];
+        let c = topo.triangles()[t];
+        let corner = |v| {
+            let k = c.iter().position(|&x| x == v).unwrap();
+            [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][k]
+        };
+        let (pa, pb) = (corner(a), corner(b));
+        for i in 0..=4 {
+            let s = i as f64 / 4.0;
+            let (v, w) = (pa.0 + s * (pb.0 - pa.0), pa.1 + s * (pb.1 - pa.1));
+            worst = worst.max(near(surface.point(t, v, w).unwrap()));
+        }
+    }
+    // The rim polygon's chord error: a cut of angle 2π/n of radius 0.5.
+    let ex = shape.tessellation();
+    let rim: Vec<_> = ex.points.iter().filter(|p| p.z == 0.0 && p.length() > 0.0).collect();
+    let sagitta = cad::CYLINDER_RADIUS * (1.0 - (std::f64::consts::PI / rim.len() as f64).cos());
+    assert!(worst <= sagitta / 5.0, "rims {worst:e} against the facets' {sagitta:e}");
+    let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
+    // Pinned as measured: 1.1e-3 / 4.3e-4.
+    assert!(d.max <= 1.2e-3 && d.mean <= 4.5e-4, "{d:?}");
+}
+
+/// A tolerance that cannot be met is refused by name, with the input
+/// vertex and the distance; a resolution that is no length is refused.
+#[test]
+fn refusals() {
+    let shape = cad::sphere(CHORD, ANGLE);
+    let net = shape.net().unwrap();
+    match Fitter::new(&net).tolerance(1e-8).run() {
+        Err(Error::FitTolerance {
+            vertex,
+            distance,
+            tolerance,
+        }) => {
+            assert!(vertex < net.points().len());
+            assert!(distance > tolerance && tolerance == 1e-8);
+        }
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+    for h in [0.0, -1.0, f64::NAN] {
+        let err = Fitter::new(&net).resolution(h).run().unwrap_err();
+        assert!(matches!(err.root(), Error::InvalidArgument(_)), "{err}");
+    }
+}
