@@ -88,6 +88,12 @@ module loopsurf
         integer(c_size_t) :: max_triangles
     end type
 
+    !> Options of ls_net_partition: the number of parts and METIS's random seed.
+    type, bind(C) :: ls_partition_options
+        integer(c_size_t) :: struct_size
+        integer(c_int) :: parts, seed
+    end type
+
     !> Options of ls_mesh_curve, curving another tool's mesh.
     type, bind(C) :: ls_mesh_curve_options
         integer(c_size_t) :: struct_size
@@ -160,6 +166,21 @@ module loopsurf
             real(c_double), value :: degrees
             integer(c_size_t), intent(out) :: n
             type(c_ptr), intent(out) :: edges, triangles, turns
+        end function
+        integer(c_int) function ls_partition_options_default(options) &
+                bind(C, name="ls_partition_options_default")
+            import :: c_int, ls_partition_options
+            type(ls_partition_options), intent(out) :: options
+        end function
+        ! Each triangle's part (int32, 0-based parts, ntris entries), freed
+        ! with ls_free_array, and the number of control edges between parts.
+        integer(c_int) function ls_net_partition(net, options, ntris, part, cut) &
+                bind(C, name="ls_net_partition")
+            import :: c_int, c_size_t, c_ptr, ls_partition_options
+            type(c_ptr), value :: net
+            type(ls_partition_options), intent(in) :: options
+            integer(c_size_t), intent(out) :: ntris, cut
+            type(c_ptr), intent(out) :: part
         end function
         integer(c_int) function ls_fit_options_default(options) bind(C, name="ls_fit_options_default")
             import :: c_int, ls_fit_options

@@ -79,6 +79,33 @@ program test_loopsurf
     call check(ls_refine_origins(surf, 2_c_int, n, rxyz, rtris) == LS_OK .and. n == 66, "refine origins")
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
+    ! Partition of the octahedron into 4 parts of 2 triangles each; the
+    ! same parts twice; K = 9 of 8 triangles refused (the C test checks
+    ! that the outputs stay untouched: here they are intent(out)).
+    block
+        type(ls_partition_options) :: po
+        type(c_ptr) :: part_c, part2_c
+        integer(c_int32_t), pointer :: part(:), part2(:)
+        integer(c_size_t) :: cut, cut2
+        call check(ls_partition_options_default(po) == LS_OK, "partition options")
+        call check(po%struct_size == c_sizeof(po) .and. po%parts == 1 .and. po%seed == 1, &
+                   "partition options: defaults")
+        po%parts = 4
+        call check(ls_net_partition(net, po, nt, part_c, cut) == LS_OK .and. nt == 8, "partition")
+        call c_f_pointer(part_c, part, [nt])
+        do i = 0, 3
+            call check(count(part == i) == 2, "partition: two triangles a part")
+        end do
+        call check(cut >= 4 .and. cut <= 12, "partition: cut")
+        call check(ls_net_partition(net, po, nt, part2_c, cut2) == LS_OK, "partition again")
+        call c_f_pointer(part2_c, part2, [nt])
+        call check(all(part == part2) .and. cut == cut2, "partition: deterministic")
+        call ls_free_array(part2_c)
+        po%parts = 9
+        call check(ls_net_partition(net, po, nt, part2_c, cut2) == LS_ERR_INVALID_ARGUMENT, "K = 9 of 8")
+        call check(index(loopsurf_last_error(), "K = 9") > 0, "partition: refusal names K")
+        call ls_free_array(part_c)
+    end block
     ! Mesher, uniform 3 on the octahedron: 8 * 9 triangles, closed.
     block
         type(ls_mesh_options) :: mo

@@ -114,7 +114,8 @@ void ls_free_array(void *array);
  * Nets
  *
  * Load or build a control net, repair it explicitly, tag its hard
- * features; fit a new net to a CAD tessellation.
+ * features, partition its triangles for parallel runs; fit a new net to a
+ * CAD tessellation.
  * ========================================================================== */
 
 // `ls_net_load_with` flag: split polygon faces into triangles (ear
@@ -139,6 +140,18 @@ void ls_free_array(void *array);
 
 // `ls_net_load_with` flags: every repair (the CLI's `--repair`).
 #define LS_LOAD_REPAIR 31
+
+// Options of `ls_net_partition`: fill with
+// `ls_partition_options_default`, then change what you need.
+typedef struct {
+  // `sizeof(ls_partition_options)` as the caller was compiled with.
+  size_t struct_size;
+  // The number of parts K, 1 to the number of triangles. Default 1.
+  int parts;
+  // METIS's random seed: the same net, K and seed give the same parts.
+  // Default 1.
+  int seed;
+} ls_partition_options;
 
 // Options of `ls_net_fit`: fill with `ls_fit_options_default`, then change
 // what you need.
@@ -218,6 +231,26 @@ int ls_net_folds(const ls_net *net,
 
 // Frees a net (NULL is ignored). Surfaces built from it stay valid.
 void ls_net_free(ls_net *net);
+
+// Writes the default options of `ls_net_partition` into `options`.
+int ls_partition_options_default(ls_partition_options *options);
+
+// Splits the net's triangles into `options->parts` parts with METIS
+// (k-way on the triangles' edge adjacency): the largest part holds at most
+// 5 % over the mean (or ⌈ntris / K⌉ where that is more), each part is
+// connected where the net is, and few control edges lie between parts.
+// The same net, K and seed give the same parts on every thread count.
+// `options` may be NULL for the defaults (K = 1).
+//
+// Writes `ntris`, a new array `part` (ntris entries, each triangle's part,
+// 0 to K − 1) to be released with `ls_free_array`, and `cut`, the number
+// of control edges between two parts. K below 1 or above the number of
+// triangles is `LS_ERR_INVALID_ARGUMENT`, and nothing is written.
+int ls_net_partition(const ls_net *net,
+                     const ls_partition_options *options,
+                     size_t *ntris,
+                     int32_t **part,
+                     size_t *cut);
 
 // Writes the default options of `ls_net_fit` into `options`.
 int ls_fit_options_default(ls_fit_options *options);

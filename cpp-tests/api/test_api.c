@@ -1293,6 +1293,95 @@ static void test_mesh_curve(void) {
     ls_surface_free(surface);
 }
 
+/* Partitioning the pig (891 triangles) into 7 parts: every triangle in a
+   part, balanced, the cut counted here from the triangles, the same parts
+   twice; bad K and NULL pointers refused with the outputs untouched. */
+static void test_partition(const char* data_dir) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/pig.off", data_dir);
+    ls_net* net = NULL;
+    EXPECT(ls_net_load(path, &net), LS_OK);
+    size_t nv, nt, nh;
+    EXPECT(ls_net_counts(net, &nv, &nt, &nh), LS_OK);
+    double* xyz = NULL;
+    int32_t* tris = NULL;
+    size_t rv, rt;
+    ls_surface* surface = NULL;
+    EXPECT(ls_surface_build(net, &surface), LS_OK);
+    EXPECT(ls_refine(surface, 0, 0, &rv, &xyz, &rt, &tris), LS_OK); /* the net's own triangles */
+    CHECK(rt == nt);
+
+    ls_partition_options o;
+    memset(&o, 0xff, sizeof o);
+    EXPECT(ls_partition_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.parts == 1 && o.seed == 1);
+    o.parts = 7;
+    size_t ntris = 0, cut = 0;
+    int32_t* part = NULL;
+    EXPECT(ls_net_partition(net, &o, &ntris, &part, &cut), LS_OK);
+    CHECK(ntris == nt && part != NULL);
+    size_t sizes[7] = {0};
+    for (size_t t = 0; t < ntris; t++) {
+        CHECK(part[t] >= 0 && part[t] < 7);
+        if (part[t] >= 0 && part[t] < 7) sizes[part[t]]++;
+    }
+    for (int p = 0; p < 7; p++) CHECK(sizes[p] > 0 && sizes[p] <= (size_t)(1.05 * nt / 7));
+    /* Control edges between parts: each edge a -> b of one triangle meets
+       b -> a of its neighbour. */
+    size_t counted = 0;
+    for (size_t t = 0; t < nt; t++)
+        for (size_t s = t + 1; s < nt; s++) {
+            if (part[t] == part[s]) continue;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    if (tris[3 * t + i] == tris[3 * s + (j + 1) % 3] &&
+                        tris[3 * t + (i + 1) % 3] == tris[3 * s + j])
+                        counted++;
+        }
+    CHECK(cut == counted && cut > 0);
+    /* The same parts again. */
+    size_t ntris2 = 0, cut2 = 0;
+    int32_t* again = NULL;
+    EXPECT(ls_net_partition(net, &o, &ntris2, &again, &cut2), LS_OK);
+    CHECK(ntris2 == ntris && cut2 == cut && memcmp(part, again, ntris * sizeof *part) == 0);
+    ls_free_array(again);
+
+    /* NULL options: K = 1, everything in part 0. */
+    EXPECT(ls_net_partition(net, NULL, &ntris2, &again, &cut2), LS_OK);
+    CHECK(ntris2 == nt && cut2 == 0);
+    for (size_t t = 0; t < ntris2; t++) CHECK(again[t] == 0);
+    ls_free_array(again);
+
+    /* Refusals leave the outputs as they were. */
+    int32_t* untouched = (int32_t*)&o;
+    size_t n_out = 12345, cut_out = 6789;
+    int32_t* part_out = untouched;
+    int bad_k[] = {0, -3, (int)nt + 1};
+    for (int i = 0; i < 3; i++) {
+        o.parts = bad_k[i];
+        EXPECT(ls_net_partition(net, &o, &n_out, &part_out, &cut_out), LS_ERR_INVALID_ARGUMENT);
+        char k_text[32];
+        snprintf(k_text, sizeof k_text, "K = %d", bad_k[i]);
+        CHECK(strstr(ls_last_error(), k_text) != NULL);
+        CHECK(strncmp(ls_last_error(), "ls_net_partition:", 17) == 0);
+    }
+    o.parts = 7;
+    EXPECT(ls_net_partition(NULL, &o, &n_out, &part_out, &cut_out), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_partition(net, &o, NULL, &part_out, &cut_out), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_partition(net, &o, &n_out, NULL, &cut_out), LS_ERR_NULL_POINTER);
+    EXPECT(ls_net_partition(net, &o, &n_out, &part_out, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_partition_options_default(NULL), LS_ERR_NULL_POINTER);
+    o.struct_size = 4;
+    EXPECT(ls_net_partition(net, &o, &n_out, &part_out, &cut_out), LS_ERR_INVALID_ARGUMENT);
+    CHECK(n_out == 12345 && cut_out == 6789 && part_out == untouched);
+
+    ls_free_array(part);
+    ls_free_array(xyz);
+    ls_free_array(tris);
+    ls_surface_free(surface);
+    ls_net_free(net);
+}
+
 /* ls_net_fit: a new net whose limit passes within the tolerance of every
  * vertex; the defaults as documented; refusals name their field and leave
  * the output untouched. */
@@ -1347,6 +1436,7 @@ int main(int argc, char** argv) {
     test_version_and_strings();
     test_nets(data_dir);
     test_repairs(data_dir);
+    test_partition(data_dir);
     test_queries();
     test_refine();
     test_mesh();

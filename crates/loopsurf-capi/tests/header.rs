@@ -19,8 +19,8 @@ const SECTIONS: &[(&str, &str, &[&str])] = &[
     ),
     (
         "Nets",
-        "Load or build a control net, repair it explicitly, tag its hard features; fit a new net to a CAD tessellation.",
-        &["net.rs", "fit.rs"],
+        "Load or build a control net, repair it explicitly, tag its hard features, partition its triangles for parallel runs; fit a new net to a CAD tessellation.",
+        &["net.rs", "partition.rs", "fit.rs"],
     ),
     (
         "Surfaces",

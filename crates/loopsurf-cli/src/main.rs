@@ -9,6 +9,7 @@ mod cmd_hard_edges;
 mod cmd_info;
 mod cmd_interpolate;
 mod cmd_mesh;
+mod cmd_partition;
 mod cmd_refine;
 mod cmd_snap;
 mod cmd_topology;
@@ -54,6 +55,8 @@ enum Command {
     Snap(cmd_snap::Args),
     /// The model of the hard features: faces, edges (curves) with their corners and control-vertex chains.
     Topology(cmd_topology::Args),
+    /// The control triangles in K parts (METIS) for K processes: edge cut, part sizes and halos.
+    Partition(cmd_partition::Args),
 }
 
 /// Runs `write` against a buffered, locked stdout. A reader that stops
@@ -108,6 +111,7 @@ fn main() -> ExitCode {
         Command::Mesh(args) => cmd_mesh::run(args),
         Command::Curve(args) => cmd_curve::run(args),
         Command::Topology(args) => cmd_topology::run(args),
+        Command::Partition(args) => cmd_partition::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

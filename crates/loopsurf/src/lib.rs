@@ -16,8 +16,10 @@
 //!    (positions, validation, the limit operator; reading a file parses,
 //!    repairs and validates here).
 //! 4. On the net: [`refine`] (uniform subdivision), [`interpolate`]
-//!    (control points whose limit passes through given points) and
-//!    [`model`] (corners, curves and faces of the hard features).
+//!    (control points whose limit passes through given points),
+//!    [`model`] (corners, curves and faces of the hard features) and
+//!    [`partition`] (the control triangles in K parts for K processes,
+//!    with the halo each part needs).
 //! 5. The surface: the crate-private `eval` (patches and special-vertex
 //!    eigenstructure) → [`surface`] (exact evaluation at any triangle and
 //!    parameters).
@@ -57,6 +59,7 @@ pub mod mesh;
 pub mod model;
 pub mod net;
 pub mod parameters;
+pub mod partition;
 pub mod refine;
 pub mod remesh;
 pub mod repair;
@@ -76,6 +79,7 @@ pub use glam::DVec3;
 pub use mesh::{Density, Mesher, SurfaceMesh};
 pub use net::ControlNet;
 pub use parameters::SurfacePoint;
+pub use partition::Partition;
 pub use refine::Refinement;
 pub use remesh::Remesher;
 pub use snap::Snap;

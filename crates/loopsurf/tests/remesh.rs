@@ -464,7 +464,10 @@ fn densities_over_the_budget_fail_with_the_count() {
         .run()
         .unwrap_err();
     assert!(
-        matches!(err.root(), loopsurf::Error::OverBudget { limit: 20_000, .. }),
+        matches!(
+            err.root(),
+            loopsurf::Error::OverBudget { limit: 20_000, .. }
+        ),
         "{err:?}"
     );
 }

@@ -672,7 +672,6 @@ impl SurfaceMesh {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::nearest_in_triangle;
