@@ -85,9 +85,16 @@ fn cylinder_rims_on_the_true_edges() {
     }
     // The rim polygon's chord error: a cut of angle 2π/n of radius 0.5.
     let ex = shape.tessellation();
-    let rim: Vec<_> = ex.points.iter().filter(|p| p.z == 0.0 && p.length() > 0.0).collect();
+    let rim: Vec<_> = ex
+        .points
+        .iter()
+        .filter(|p| p.z == 0.0 && p.length() > 0.0)
+        .collect();
     let sagitta = cad::CYLINDER_RADIUS * (1.0 - (std::f64::consts::PI / rim.len() as f64).cos());
-    assert!(worst <= sagitta / 5.0, "rims {worst:e} against the facets' {sagitta:e}");
+    assert!(
+        worst <= sagitta / 5.0,
+        "rims {worst:e} against the facets' {sagitta:e}"
+    );
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     // Pinned as measured: 1.1e-3 / 4.3e-4.
     assert!(d.max <= 1.2e-3 && d.mean <= 4.5e-4, "{d:?}");

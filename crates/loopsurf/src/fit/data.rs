@@ -45,6 +45,10 @@ pub struct Data {
     footpoints: Vec<Option<(usize, f64, f64)>>,
 }
 
+/// A datum located: its footpoint on the surface (none on a crease), the
+/// finest vertex of its row, and the row's target.
+type Located = (Option<(usize, f64, f64)>, u32, DVec3);
+
 /// One datum's row and target.
 pub struct Equation {
     pub vertex: u32,
@@ -80,7 +84,7 @@ impl Data {
         crease: &Crease,
         x: &[DVec3],
     ) -> Result<Vec<Equation>> {
-        let located: Vec<Result<(Option<(usize, f64, f64)>, u32, DVec3)>> = self
+        let located: Vec<Result<Located>> = self
             .points
             .par_iter()
             .zip(&self.on_feature)

@@ -79,13 +79,13 @@ pub fn solve(
         }
     }
     // λ FᵀF x_ref, so that the fairness term measures x − x_ref.
-    for j in 0..n {
+    for (j, r) in reference.iter().enumerate() {
         let range = fairness.col_range(j);
         let rows = &fairness.row_idx()[range.clone()];
         let vals = &fairness.val()[range];
         for (&i, &v) in rows.iter().zip(vals) {
             for k in 0..3 {
-                rhs[(i, k)] += lambda * v * reference[j][k];
+                rhs[(i, k)] += lambda * v * r[k];
             }
         }
     }
