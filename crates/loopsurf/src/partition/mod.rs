@@ -6,7 +6,9 @@
 //! triangles. Its edge cut is the number of control edges between parts,
 //! which is what the ranks' interfaces cost. METIS's multilevel k-way
 //! partitioner is asked for parts within 3 % of the mean (so that the 5 %
-//! promised here holds with room), contiguous where the net is connected.
+//! promised here holds with room), contiguous where the net is connected;
+//! where contiguity still costs the balance (parts of a dozen triangles),
+//! `rebalance` evens the parts out.
 //!
 //! **Halo.** Evaluating control triangle t exactly needs every control
 //! vertex within one edge of one of t's three corners (the closed 1-rings
