@@ -105,3 +105,30 @@ fn partition_refuses_bad_part_counts_with_one_line() {
         Some("parts 1 triangles 4 cut 0 largest 4 halo 0")
     );
 }
+
+/// The same parts whatever the thread count, from separate processes.
+#[test]
+fn partition_is_the_same_on_one_and_two_threads() {
+    let dir =
+        std::env::temp_dir().join(format!("loopsurf-partition-threads-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |threads: &str| {
+        let vtu = dir.join(format!("parts{threads}.vtu"));
+        let out = Command::new(env!("CARGO_BIN_EXE_loopsurf"))
+            .args([
+                "partition",
+                "--example",
+                "viking",
+                "--parts",
+                "5",
+                "-o",
+                vtu.to_str().unwrap(),
+            ])
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        (out.stdout, std::fs::read(&vtu).unwrap())
+    };
+    assert_eq!(run("1"), run("2"));
+}

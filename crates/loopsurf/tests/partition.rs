@@ -81,7 +81,10 @@ fn cut_of(topo: &Topology, parts: &[u32]) -> usize {
         .count()
 }
 
-fn check(name: &str, net: &ControlNet, k: usize) -> Partition {
+/// Checks a partition of `net` into `k` parts; with `beat_naive`, also
+/// that its cut is under half the naive one (parts of a handful of
+/// triangles, all border, cannot do that).
+fn check(name: &str, net: &ControlNet, k: usize, beat_naive: bool) -> Partition {
     let topo = net.topology();
     let n = topo.num_triangles();
     let p = partition(net, k).unwrap();
@@ -131,7 +134,7 @@ fn check(name: &str, net: &ControlNet, k: usize) -> Partition {
         p.largest_halo()
     );
     assert!(
-        2 * p.edge_cut() < naive_cut,
+        !beat_naive || 2 * p.edge_cut() < naive_cut,
         "{name} K={k}: cut {} not well below the naive {naive_cut}",
         p.edge_cut()
     );
@@ -143,7 +146,7 @@ fn real_meshes_partition_balanced_connected_with_small_cuts() {
     for name in ["pig.off", "fandisk.off", "bunny00.off"] {
         let Some(net) = cgal(name) else { continue };
         for k in [2, 7, 16] {
-            let p = check(name, &net, k);
+            let p = check(name, &net, k, true);
             // Deterministic: a second run gives the same parts.
             assert_eq!(
                 partition(&net, k).unwrap().parts(),
@@ -151,6 +154,17 @@ fn real_meshes_partition_balanced_connected_with_small_cuts() {
                 "{name} K={k}"
             );
         }
+    }
+}
+
+/// Parts of about 14 and 9 triangles: METIS misses the balance by a
+/// triangle, and border triangles moved along chains of parts even it out
+/// with every part still connected.
+#[test]
+fn small_parts_are_evened_out_and_stay_connected() {
+    let Some(net) = cgal("pig.off") else { return };
+    for k in [64, 100] {
+        check("pig.off", &net, k, false);
     }
 }
 
@@ -229,4 +243,36 @@ fn disconnected_nets_and_seeds() {
     let other = partition_with(&a, 7, &PartitionOptions { seed: 12345 }).unwrap();
     let again = partition_with(&a, 7, &PartitionOptions { seed: 12345 }).unwrap();
     assert_eq!(other.parts(), again.parts());
+}
+
+/// The figures of `docs/partition.md`: run with `--ignored --nocapture`.
+/// Times the partition of bunny00 refined twice (about 1.2 million
+/// triangles) and checks it like the others.
+#[test]
+#[ignore]
+fn figures_for_the_docs() {
+    for name in ["pig.off", "fandisk.off", "bunny00.off"] {
+        let Some(net) = cgal(name) else { continue };
+        for k in [2, 7, 16, 64] {
+            check(name, &net, k, k * 50 < net.triangles().len());
+        }
+    }
+    let Some(net) = cgal("bunny00.off") else {
+        return;
+    };
+    let fine = loopsurf::refine::refine_uniform(&net, 2).unwrap();
+    let fine = fine.net();
+    for k in [16, 256] {
+        let start = std::time::Instant::now();
+        let p = partition(fine, k).unwrap();
+        let secs = start.elapsed().as_secs_f64();
+        println!(
+            "bunny00 x2: N {} K {k} cut {} largest {} halo {} in {secs:.2} s",
+            fine.triangles().len(),
+            p.edge_cut(),
+            p.largest(),
+            p.largest_halo()
+        );
+        check("bunny00 x2", fine, k, true);
+    }
 }

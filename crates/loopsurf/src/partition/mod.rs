@@ -6,7 +6,9 @@
 //! triangles. Its edge cut is the number of control edges between parts,
 //! which is what the ranks' interfaces cost. METIS's multilevel k-way
 //! partitioner is asked for parts within 3 % of the mean (so that the 5 %
-//! promised here holds with room), contiguous where the net is connected.
+//! promised here holds with room), contiguous where the net is connected;
+//! where contiguity still costs the balance (parts of a dozen triangles),
+//! `rebalance` evens the parts out.
 //!
 //! **Halo.** Evaluating control triangle t exactly needs every control
 //! vertex within one edge of one of t's three corners (the closed 1-rings
@@ -29,6 +31,8 @@ use crate::error::{Error, Result};
 use crate::net::ControlNet;
 use crate::topology::{Topology, NONE};
 use std::sync::Mutex;
+
+mod rebalance;
 
 /// Largest part allowed, relative to the mean part.
 pub const MAX_IMBALANCE: f64 = 1.05;
@@ -137,8 +141,9 @@ fn is_connected(start: &[u32], adj: &[u32]) -> bool {
     reached == n
 }
 
-/// METIS k-way on the dual graph, retried with a tighter imbalance while
-/// the largest part is over [`max_part_size`].
+/// METIS k-way on the dual graph. A part over [`max_part_size`] is evened
+/// out by moving border triangles ([`rebalance`]); if that fails, METIS is
+/// asked again with a tighter imbalance.
 fn metis_parts(topo: &Topology, k: usize, seed: i32) -> Result<Vec<u32>> {
     let (start, adj) = dual_graph(topo);
     let too_large = || {
@@ -159,19 +164,23 @@ fn metis_parts(topo: &Topology, k: usize, seed: i32) -> Result<Vec<u32>> {
     let limit = max_part_size(n, k);
     let mut largest = 0;
     for ufactor in UFACTORS {
-        let part = run_metis(&xadj, &adjncy, k, seed, ufactor, contig)?;
-        let mut sizes = vec![0usize; k];
-        for &p in &part {
-            sizes[p as usize] += 1;
-        }
-        largest = sizes.iter().copied().max().unwrap_or(0);
-        if largest <= limit {
+        let mut part = run_metis(&xadj, &adjncy, k, seed, ufactor, contig)?;
+        largest = largest_part(&part, k);
+        if largest <= limit || rebalance::rebalance(&start, &adj, &mut part, k, limit, contig) {
             return Ok(part);
         }
     }
     Err(Error::InvalidArgument(format!(
         "METIS could not balance {n} triangles into K = {k} parts: the largest part has {largest} triangles, over the {limit} allowed (5 % over the mean)"
     )))
+}
+
+fn largest_part(part: &[u32], k: usize) -> usize {
+    let mut sizes = vec![0usize; k];
+    for &p in part {
+        sizes[p as usize] += 1;
+    }
+    sizes.into_iter().max().unwrap_or(0)
 }
 
 /// One METIS k-way call, under the lock.
