@@ -148,6 +148,22 @@ fn main() -> loopsurf::Result<()> {
          {} samples per control triangle.\n",
         cad::lattice(LATTICE).len()
     );
+    let curvature_rows = distance_table(&shapes)?;
+    curvature_table(curvature_rows);
+    sphere_by_latitude(shapes[1].as_ref())?;
+    finer_facets_table();
+    fit_timing()?;
+    println!("\n({:.1} s)", start.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// The distance of every surrogate of every shape (and of two variants: the
+/// fan-free caps, and the cone's apex, which no dihedral angle marks,
+/// tagged as a corner by hand); the curvature cells of the shapes whose
+/// curvature is checked.
+fn distance_table(
+    shapes: &[Box<dyn Analytic>],
+) -> loopsurf::Result<Vec<(&'static str, Vec<String>)>> {
     println!("Distance to the true surface, max / mean, relative to the bounding-box diagonal:\n");
     println!(
         "| shape | vertices | triangles | facets | approximating | solve | displacement | fit |"
@@ -155,7 +171,7 @@ fn main() -> loopsurf::Result<()> {
     println!("|---|---:|---:|---|---|---|---|---|");
     let mut curvature_rows = Vec::new();
     let mut notes = Vec::new();
-    for shape in &shapes {
+    for shape in shapes {
         let mut net = shape.net()?;
         net.tag_by_angle(CREASE_ANGLE)?;
         let curvature = row(shape.as_ref(), shape.name(), &net, &mut notes)?;
@@ -163,8 +179,6 @@ fn main() -> loopsurf::Result<()> {
             curvature_rows.push((shape.name(), curvature));
         }
     }
-    // Variants: the fan-free caps, and the cone's apex (no dihedral angle
-    // marks it) tagged as a corner by hand.
     let zigzag = cad::cylinder(CHORD, ANGLE, CapStyle::Zigzag);
     let mut net = zigzag.net()?;
     net.tag_by_angle(CREASE_ANGLE)?;
@@ -183,16 +197,25 @@ fn main() -> loopsurf::Result<()> {
     for note in &notes {
         println!("\n{note}");
     }
+    Ok(curvature_rows)
+}
+
+/// The mean-curvature error of each surrogate, away from features.
+fn curvature_table(rows: Vec<(&'static str, Vec<String>)>) {
     println!(
         "\nMean-curvature error |H − H_true| / |H_true|, max / mean, farther than {MARGIN} of the diagonal \
          from rims and blend seams:\n"
     );
     println!("| shape | approximating | solve | displacement | fit |");
     println!("|---|---|---|---|---|");
-    for (name, cells) in curvature_rows {
+    for (name, cells) in rows {
         println!("| {name} | {} |", cells.join(" | "));
     }
-    let sphere = &shapes[1];
+}
+
+/// The sphere's curvature error by latitude band: its poles are vertices of
+/// high valence, where the surrogates differ most.
+fn sphere_by_latitude(sphere: &dyn Analytic) -> loopsurf::Result<()> {
     let ex = sphere.tessellation();
     let mut valence = vec![0usize; ex.points.len()];
     ex.tris
@@ -223,6 +246,11 @@ fn main() -> loopsurf::Result<()> {
             .collect();
         println!("| {lo}°–{}° | {} |", hi.min(90.0), cells.join(" | "));
     }
+    Ok(())
+}
+
+/// The facets of tessellations 16× finer: how close a denser input gets.
+fn finer_facets_table() {
     println!(
         "\nThe same shapes at chord {:e} (16× finer), facets only:\n",
         CHORD / 16.0
@@ -240,6 +268,10 @@ fn main() -> loopsurf::Result<()> {
             cell(&facets)
         );
     }
+}
+
+/// The time to fit a 100k-triangle input: the sphere at the finer chord.
+fn fit_timing() -> loopsurf::Result<()> {
     let fine = cad::sphere(CHORD / 16.0, ANGLE);
     let net = fine.net()?;
     let clock = Instant::now();
@@ -252,6 +284,5 @@ fn main() -> loopsurf::Result<()> {
         fit.report.vertices.max,
         fit.report.vertices.mean
     );
-    println!("\n({:.1} s)", start.elapsed().as_secs_f64());
     Ok(())
 }
