@@ -1,33 +1,10 @@
 //! The `loopsurf` command as a user runs it: outputs, files, exit codes.
 
+mod support;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn loopsurf(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_loopsurf"))
-        .args(args)
-        .output()
-        .expect("the loopsurf binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("loopsurf-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-/// Exit status 2 and exactly one line on stderr that mentions `needle`.
-fn assert_clean_failure(out: &Output, needle: &str) {
-    let err = text(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert_eq!(err.lines().count(), 1, "one line expected, got: {err}");
-    assert!(err.contains(needle), "'{err}' should mention '{needle}'");
-    assert!(!err.contains("panicked"));
-}
+use std::process::Output;
+use support::{assert_clean_failure, loopsurf, loopsurf_with_stdin, scratch, text};
 
 #[test]
 fn info_on_the_viking_finds_two_hard_circles() {
@@ -155,24 +132,6 @@ fn bad_input_exits_2_with_one_line() {
     };
     assert_clean_failure(&with_tags("0 1\n1 two\n"), "tags_bad.txt");
     assert_clean_failure(&with_tags("0 999999\n"), "tags_bad.txt:1");
-}
-
-fn loopsurf_with_stdin(args: &[&str], stdin: &str) -> Output {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_loopsurf"))
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(stdin.as_bytes())
-        .unwrap();
-    child.wait_with_output().unwrap()
 }
 
 #[test]

@@ -1,41 +1,9 @@
 //! `loopsurf fit` and `--fit` as a user runs them: outputs, files, exit
 //! codes, and the one-line refusals.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod support;
 
-fn loopsurf(args: &[&str], stdin: Option<&str>) -> Output {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_loopsurf"))
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("the loopsurf binary runs");
-    let mut input = child.stdin.take().unwrap();
-    input.write_all(stdin.unwrap_or("").as_bytes()).unwrap();
-    drop(input);
-    child.wait_with_output().unwrap()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("loopsurf-cli-fit-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-/// Exit status 2 and exactly one line on stderr that mentions `needle`.
-fn assert_clean_failure(out: &Output, needle: &str) {
-    let err = text(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert_eq!(err.lines().count(), 1, "one line expected, got: {err}");
-    assert!(err.contains(needle), "'{err}' should mention '{needle}'");
-}
+use support::{assert_clean_failure, loopsurf_with_stdin, scratch, text};
 
 /// The fitted net is written with its hard edges next to it, reads back
 /// as a net with those edges, and the report is printed.
@@ -43,7 +11,7 @@ fn assert_clean_failure(out: &Output, needle: &str) {
 fn fit_writes_the_net_its_hard_edges_and_the_report() {
     let out_path = scratch("cube.obj");
     let out_s = out_path.to_str().unwrap();
-    let out = loopsurf(
+    let out = loopsurf_with_stdin(
         &[
             "fit",
             "--example",
@@ -55,7 +23,7 @@ fn fit_writes_the_net_its_hard_edges_and_the_report() {
             "-o",
             out_s,
         ],
-        None,
+        "",
     );
     assert!(out.status.success(), "{}", text(&out.stderr));
     let s = text(&out.stdout);
@@ -64,9 +32,9 @@ fn fit_writes_the_net_its_hard_edges_and_the_report() {
     let edges = out_path.with_extension("hard-edges");
     let lines = std::fs::read_to_string(&edges).unwrap();
     assert!(lines.lines().count() >= 12, "{lines}");
-    let info = loopsurf(
+    let info = loopsurf_with_stdin(
         &["info", out_s, "--hard-edges", edges.to_str().unwrap()],
-        None,
+        "",
     );
     assert!(info.status.success(), "{}", text(&info.stderr));
 }
@@ -77,7 +45,7 @@ fn fit_writes_the_net_its_hard_edges_and_the_report() {
 fn fit_refuses_with_one_line() {
     let out = scratch("x.obj");
     let out = out.to_str().unwrap();
-    let refused = loopsurf(
+    let refused = loopsurf_with_stdin(
         &[
             "fit",
             "--example",
@@ -87,10 +55,10 @@ fn fit_refuses_with_one_line() {
             "-o",
             out,
         ],
-        None,
+        "",
     );
     assert_clean_failure(&refused, "misses the tolerance 1.0e-12");
-    let negative = loopsurf(
+    let negative = loopsurf_with_stdin(
         &[
             "fit",
             "--example",
@@ -100,7 +68,7 @@ fn fit_refuses_with_one_line() {
             "-o",
             out,
         ],
-        None,
+        "",
     );
     assert_clean_failure(&negative, "resolution -1");
     let bad = scratch("nonmanifold.off");
@@ -109,7 +77,7 @@ fn fit_refuses_with_one_line() {
         "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n",
     )
     .unwrap();
-    let nm = loopsurf(&["fit", bad.to_str().unwrap(), "-o", out], None);
+    let nm = loopsurf_with_stdin(&["fit", bad.to_str().unwrap(), "-o", out], "");
     assert_clean_failure(&nm, "non-manifold edge");
 }
 
@@ -117,7 +85,7 @@ fn fit_refuses_with_one_line() {
 /// is evaluated, and the fit's report goes to stderr.
 #[test]
 fn eval_on_the_fitted_net() {
-    let out = loopsurf(
+    let out = loopsurf_with_stdin(
         &[
             "eval",
             "--example",
@@ -126,7 +94,7 @@ fn eval_on_the_fitted_net() {
             "--fit-tolerance",
             "1",
         ],
-        Some("0 0 0\n"),
+        "0 0 0\n",
     );
     assert!(out.status.success(), "{}", text(&out.stderr));
     let numbers = text(&out.stdout).split_whitespace().count();

@@ -1,26 +1,10 @@
 //! `loopsurf partition` as a user runs it: the summary lines, the `part`
 //! field of the .vtu, and one clear line with exit 2 on bad input.
 
-use std::process::{Command, Output};
+mod support;
 
-fn loopsurf(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_loopsurf"))
-        .args(args)
-        .output()
-        .expect("the loopsurf binary runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-/// Exit status 2 and exactly one line on stderr that mentions `needle`.
-fn assert_clean_failure(out: &Output, needle: &str) {
-    let err = text(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert_eq!(err.lines().count(), 1, "one line expected, got: {err}");
-    assert!(err.contains(needle), "'{err}' should mention '{needle}'");
-}
+use std::process::Command;
+use support::{assert_clean_failure, loopsurf, text};
 
 /// The numbers after each word of a `word n word n ...` line.
 fn fields(line: &str) -> Vec<(String, usize)> {
