@@ -54,8 +54,12 @@ fn row(
     let facets = cad::facet_distance(shape, &ex.points, &ex.tris, LATTICE);
     let mut cells = vec![cell(&facets)];
     let mut curvature = Vec::new();
-    for (label, mode) in MODES {
-        match Surface::with_mode(net, mode) {
+    let surrogates = MODES
+        .iter()
+        .map(|&(label, mode)| (label, Surface::with_mode(net, mode)))
+        .chain([("fit", fitted(net))]);
+    for (label, surface) in surrogates {
+        match surface {
             Ok(surface) => {
                 cells.push(cell(&cad::surrogate_distance(shape, &surface, LATTICE)?));
                 let k = cad::curvature_error(shape, &surface, LATTICE, MARGIN)?;
@@ -66,18 +70,6 @@ fn row(
                 curvature.push("failed".into());
                 notes.push(format!("{name} {label}: {e}"));
             }
-        }
-    }
-    match fitted(net) {
-        Ok(surface) => {
-            cells.push(cell(&cad::surrogate_distance(shape, &surface, LATTICE)?));
-            let k = cad::curvature_error(shape, &surface, LATTICE, MARGIN)?;
-            curvature.push(k.map_or("—".to_string(), |d| percent(&d)));
-        }
-        Err(e) => {
-            cells.push("failed".into());
-            curvature.push("failed".into());
-            notes.push(format!("{name} fit: {e}"));
         }
     }
     println!(
