@@ -43,12 +43,30 @@ fn query_lines() {
         let err = parse3(bad).expect_err(bad).to_string();
         assert!(err.starts_with("line 7: expected `x y z`, got '"), "{err}");
     }
-    // The extremes read back bit-exact; a NaN reads back a NaN.
-    for text in [
-        "5e-324 -0 1.7976931348623157e308",
-        "inf -infinity 2.2250738585072014e-308",
-        "-nan 0.1 1e400",
+    // The extremes parse to exactly these bit patterns (the smallest
+    // subnormal, a negative zero, the largest finite, the infinities, the
+    // smallest normal, an overflow to infinity), and then read back
+    // bit-exact through the printed form; a NaN reads back a NaN.
+    for (text, bits) in [
+        (
+            "5e-324 -0 1.7976931348623157e308",
+            [0x0000_0000_0000_0001, 0x8000_0000_0000_0000, 0x7fef_ffff_ffff_ffff],
+        ),
+        (
+            "inf -infinity 2.2250738585072014e-308",
+            [0x7ff0_0000_0000_0000, 0xfff0_0000_0000_0000, 0x0010_0000_0000_0000],
+        ),
+        (
+            "0.1 -2.5e3 1e400",
+            [0x3fb9_9999_9999_999a, 0xc0a3_8800_0000_0000, 0x7ff0_0000_0000_0000],
+        ),
     ] {
+        let parsed = parse3(text).unwrap().unwrap().map(f64::to_bits);
+        let hex = |b: [u64; 3]| b.map(|x| format!("{x:#018x}"));
+        assert_eq!(hex(parsed), hex(bits), "{text}");
         queries_case::replay(text.as_bytes());
     }
+    let nan = parse3("-nan 0.1 nan").unwrap().unwrap();
+    assert!(nan[0].is_nan() && nan[2].is_nan(), "{nan:?}");
+    queries_case::replay(b"-nan 0.1 1e400");
 }
