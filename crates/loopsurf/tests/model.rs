@@ -52,6 +52,7 @@ fn check(net: &ControlNet, m: &Model) {
         }
     }
     assert!(seen.iter().all(|&s| s == 1));
+    check_faces_are_soft_components(net, m);
     // Loops close: each curve run ends where the next begins, and the
     // face is on the side the loop says.
     for (f, face) in m.faces().iter().enumerate() {
@@ -95,6 +96,37 @@ fn check(net: &ControlNet, m: &Model) {
     let chi = inner_vertices - soft + topo.num_triangles() as i64 - open_curves
         + m.corners().len() as i64;
     assert_eq!(chi, topo.euler_characteristic());
+}
+
+/// Faces are the components of the triangles joined across soft edges:
+/// a soft edge's two triangles lie in one face, and each face is connected
+/// across its soft edges (a flood fill written here, from the edges'
+/// triangles and hard flags alone).
+fn check_faces_are_soft_components(net: &ControlNet, m: &Model) {
+    let topo = net.topology();
+    let of = m.face_of_triangle();
+    let mut across: Vec<Vec<u32>> = vec![Vec::new(); topo.num_triangles()];
+    for (e, pair) in topo.edge_triangles().iter().enumerate() {
+        let [a, b] = *pair;
+        if a == u32::MAX || b == u32::MAX || net.features().is_hard_edge(e) {
+            continue;
+        }
+        assert_eq!(of[a as usize], of[b as usize], "soft edge {e} joins two faces");
+        across[a as usize].push(b);
+        across[b as usize].push(a);
+    }
+    for (f, face) in m.faces().iter().enumerate() {
+        let mut reached = std::collections::HashSet::from([face.triangles[0]]);
+        let mut stack = vec![face.triangles[0]];
+        while let Some(t) = stack.pop() {
+            for &u in &across[t as usize] {
+                if reached.insert(u) {
+                    stack.push(u);
+                }
+            }
+        }
+        assert_eq!(reached.len(), face.triangles.len(), "face {f} is not connected");
+    }
 }
 
 #[test]
