@@ -111,7 +111,10 @@ fn check_faces_are_soft_components(net: &ControlNet, m: &Model) {
         if a == u32::MAX || b == u32::MAX || net.features().is_hard_edge(e) {
             continue;
         }
-        assert_eq!(of[a as usize], of[b as usize], "soft edge {e} joins two faces");
+        assert_eq!(
+            of[a as usize], of[b as usize],
+            "soft edge {e} joins two faces"
+        );
         across[a as usize].push(b);
         across[b as usize].push(a);
     }
@@ -125,7 +128,11 @@ fn check_faces_are_soft_components(net: &ControlNet, m: &Model) {
                 }
             }
         }
-        assert_eq!(reached.len(), face.triangles.len(), "face {f} is not connected");
+        assert_eq!(
+            reached.len(),
+            face.triangles.len(),
+            "face {f} is not connected"
+        );
     }
 }
 
