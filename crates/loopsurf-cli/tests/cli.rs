@@ -320,6 +320,10 @@ fn snap_certificate_is_an_eighth_column() {
         let out = loopsurf_with_stdin(&args, input);
         assert!(out.status.success(), "{}", text(&out.stderr));
         let stdout = text(&out.stdout);
+        // One answer per query, as without the certificate: a zip over no
+        // lines would check nothing.
+        assert_eq!(stdout.lines().count(), input.lines().count(), "{stdout}");
+        assert_eq!(plain.lines().count(), input.lines().count(), "{plain}");
         for (line, plain) in stdout.lines().zip(plain.lines()) {
             let f: Vec<f64> = line
                 .split_whitespace()
