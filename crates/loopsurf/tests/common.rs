@@ -57,3 +57,43 @@ impl Lcg {
         }
     }
 }
+
+/// The chord error of a mesh between the probes the meshers bound
+/// themselves (centroids and edge midpoints): the certified distance to
+/// the limit surface (`snap::closest_point`, global, no hint) from
+/// `per_triangle` interior points of every triangle. Their barycentric
+/// coordinates come from the R2 sequence (irrational steps, an irrational
+/// start, continued from triangle to triangle), folded into the triangle:
+/// never a centroid, an edge midpoint or a corner. Returns the largest
+/// distance (an upper bound of the true one) and its triangle.
+pub fn chord_error_between_probes(
+    surface: &loopsurf::Surface,
+    points: &[DVec3],
+    triangles: &[[u32; 3]],
+    per_triangle: usize,
+) -> (f64, usize) {
+    use rayon::prelude::*;
+    // The plastic number's powers: the R2 sequence's steps.
+    const G: f64 = 1.324_717_957_244_746;
+    let (a1, a2) = (1.0 / G, 1.0 / (G * G));
+    triangles
+        .par_iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let [a, b, c] = tri.map(|i| points[i as usize]);
+            let worst = (0..per_triangle)
+                .map(|k| {
+                    let i = (t * per_triangle + k) as f64;
+                    let (mut s, mut r) =
+                        ((0.271_828 + i * a1).fract(), (0.141_421 + i * a2).fract());
+                    if s + r > 1.0 {
+                        (s, r) = (1.0 - s, 1.0 - r);
+                    }
+                    let x = a + s * (b - a) + r * (c - a);
+                    loopsurf::snap::closest_point(surface, x).unwrap().distance
+                })
+                .fold(0.0, f64::max);
+            (worst, t)
+        })
+        .reduce(|| (0.0, 0), |x, y| if y.0 > x.0 { y } else { x })
+}

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{cgal_mesh, example};
+use common::{cgal_mesh, chord_error_between_probes, example};
 use loopsurf::{ControlNet, Density, LimitCurve, Mesher, Surface, SurfaceMesh};
 use std::collections::HashMap;
 
@@ -245,13 +245,21 @@ fn tolerance_is_honoured_on_viking_pig_and_fandisk() {
                 "{what}: snap {snapped} > measured {}",
                 deviation
             );
+            // And between those probes, at points the mesher never uses.
+            let (between, worst) =
+                chord_error_between_probes(&surface, &mesh.points, &mesh.triangles, 4);
+            assert!(
+                between <= bound,
+                "{what}: chord error {between} > {bound} between the probes, at triangle {worst}"
+            );
             check_all(net, &surface, &mesh, &what);
             let q = mesh.quality();
             eprintln!(
-                "{what}: {} triangles, chord error {:.2e} (snap {:.2e}) of the diagonal, min angle {:.1}°, mean min angle {:.1}°",
+                "{what}: {} triangles, chord error {:.2e} (snap {:.2e}, between probes {:.2e}) of the diagonal, min angle {:.1}°, mean min angle {:.1}°",
                 mesh.triangles.len(),
                 deviation / mesh.diagonal,
                 snapped / mesh.diagonal,
+                between / mesh.diagonal,
                 q.min_angle,
                 q.mean_min_angle
             );
