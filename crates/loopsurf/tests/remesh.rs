@@ -4,8 +4,10 @@
 //! surface and the faces, the certified curve projection for the creases.
 
 mod common;
+#[path = "support/sectors.rs"]
+mod sectors;
 
-use common::{cgal_mesh, example};
+use common::{cgal_mesh, chord_error_between_probes, example};
 use loopsurf::snap;
 use loopsurf::{ControlNet, DVec3, LimitCurve, Remesher, Surface, SurfaceMesh};
 use std::collections::{HashMap, HashSet};
@@ -192,18 +194,35 @@ fn check_invariants(name: &str, surface: &Surface, mesh: &SurfaceMesh) {
 /// the triangle must face as its own sheet does: at the local minimum of
 /// the distance found from its vertices' parameters, nearer than 1% of
 /// its longest side, with the two sheets' normals opposed. Such triangles
-/// are counted and printed.
-fn check_orientation_and_faces(name: &str, surface: &Surface, mesh: &SurfaceMesh, step: usize) {
-    let against = facing_against(name, surface, mesh, step);
+/// are counted, and at most `own_sheet` of them allowed (the count each
+/// case had when measured: an excuse that cannot grow unnoticed).
+fn check_orientation_and_faces(
+    name: &str,
+    surface: &Surface,
+    mesh: &SurfaceMesh,
+    step: usize,
+    own_sheet: usize,
+) {
+    let (against, at_folds) = facing_against(name, surface, mesh, step);
     assert!(
         against.is_empty(),
         "{name}: triangles {against:?} face against the surface"
     );
+    assert!(
+        at_folds <= own_sheet,
+        "{name}: {at_folds} triangles face their own sheet (at most {own_sheet})"
+    );
 }
 
 /// The triangles of [`check_orientation_and_faces`] that face against the
-/// surface (checking the faces as it does).
-fn facing_against(name: &str, surface: &Surface, mesh: &SurfaceMesh, step: usize) -> Vec<usize> {
+/// surface (checking the faces as it does), and how many face their own
+/// sheet where the surface folds back.
+fn facing_against(
+    name: &str,
+    surface: &Surface,
+    mesh: &SurfaceMesh,
+    step: usize,
+) -> (Vec<usize>, usize) {
     let faces = surface.model().face_of_triangle();
     let mut against = Vec::new();
     let mut wrong_face = 0;
@@ -239,7 +258,7 @@ fn facing_against(name: &str, surface: &Surface, mesh: &SurfaceMesh, step: usize
         wrong_face * 1000 <= mesh.triangles.len() / step,
         "{name}: {wrong_face} triangles carry the wrong face"
     );
-    against
+    (against, at_folds)
 }
 
 #[test]
@@ -264,13 +283,26 @@ fn quality_beats_cgal_at_the_same_size() {
             "{name}: min angle {} below CGAL's {cgal_min}",
             q.min_angle
         );
-        // Below 20° only where a feature forces it (all of pig's 20).
+        // Below 20° only where the input forces it, decided here from the
+        // control net's sectors: on pig 7 of its 23 lie in a sector
+        // narrower than 20° at a corner; the other 16 (15 away from any
+        // corner, one in a sector of 93°), all of which the remesher's own
+        // `below_20_at_features` counts as forced, are pinned, so that
+        // none is added.
+        let small = sectors::small_angles(&surface, &mesh, 20.0);
         let below = (q.below_20 * mesh.triangles.len() as f64).round() as usize;
-        let unforced = below - q.below_20_at_features;
-        println!("{name}: {below} below 20°, {unforced} not forced by a feature");
+        assert_eq!(small.len(), below, "{name}: triangles below 20°");
+        let unforced: Vec<_> = small.iter().filter(|s| !s.forced(20.0)).collect();
+        println!(
+            "{name}: {below} below 20°, {} not forced by the input's sectors",
+            unforced.len()
+        );
+        let pinned = if name == "pig" { 16 } else { 0 };
         assert!(
-            unforced == 0,
-            "{name}: {unforced} triangles below 20° away from features"
+            unforced.len() <= pinned,
+            "{name}: {} triangles below 20° that the input does not force (at most {pinned}): {}",
+            unforced.len(),
+            sectors::list(&unforced)
         );
         // The goal.
         assert!(
@@ -291,13 +323,20 @@ fn quality_beats_cgal_at_the_same_size() {
         );
         assert!(q.edge_lengths[3] <= 1.34 * h, "{name}: edge spread");
         check_invariants(name, &surface, &mesh);
-        check_orientation_and_faces(name, &surface, &mesh, 1);
+        // Pig's 3 lie where its net folds back (triangles 534 and 535).
+        let own_sheet = if name == "pig" { 3 } else { 0 };
+        check_orientation_and_faces(name, &surface, &mesh, 1, own_sheet);
     }
 }
 
+/// Points of every output triangle at which the chord error is measured
+/// between the remesher's own probes.
+const PROBES_BETWEEN: usize = 4;
+
 /// `net` adapted at the default tolerance 1e-3, with its surface: the
 /// chord error within the tolerance, as bounded by the remesher and as
-/// measured by certified snap (never above the bound).
+/// measured by certified snap (never above the bound) at its probes, and
+/// between them (at points it never probes, [`chord_error_between_probes`]).
 fn adapted(name: &str, net: &ControlNet) -> (Surface, SurfaceMesh) {
     let surface = Surface::new(net).unwrap();
     let tol = 1e-3;
@@ -309,9 +348,12 @@ fn adapted(name: &str, net: &ControlNet) -> (Surface, SurfaceMesh) {
     let diagonal = net.bbox_diagonal();
     let bound = mesh.deviation.unwrap() / diagonal;
     let snapped = mesh.snap_deviation(&surface).unwrap() / diagonal;
+    let (between, worst) =
+        chord_error_between_probes(&surface, &mesh.points, &mesh.triangles, PROBES_BETWEEN);
+    let between = between / diagonal;
     let q = mesh.quality();
     println!(
-        "{name}: {} triangles, deviation {bound:.3e} (bound) {snapped:.3e} (snap), min {:.2}°, mean-min {:.2}°, below 20° {:.3}%",
+        "{name}: {} triangles, deviation {bound:.3e} (bound) {snapped:.3e} (snap) {between:.3e} (between probes, triangle {worst}), min {:.2}°, mean-min {:.2}°, below 20° {:.3}%",
         mesh.triangles.len(),
         q.min_angle,
         q.mean_min_angle,
@@ -324,6 +366,10 @@ fn adapted(name: &str, net: &ControlNet) -> (Surface, SurfaceMesh) {
     assert!(
         snapped <= bound * (1.0 + 1e-9),
         "{name}: the bound is below the snap"
+    );
+    assert!(
+        between <= tol,
+        "{name}: {between:e} over {tol} between the probes, at triangle {worst}"
     );
     (surface, mesh)
 }
@@ -346,7 +392,7 @@ fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
             q.mean_min_angle
         );
         if name != "pig (40°)" {
-            check_orientation_and_faces(name, &surface, &mesh, 1);
+            check_orientation_and_faces(name, &surface, &mesh, 1, 0);
             // The goals: nothing below 20°.
             assert!(q.min_angle >= 20.0, "{name}: min angle {}", q.min_angle);
             continue;
@@ -358,24 +404,31 @@ fn adaptive_meshes_honour_the_tolerance_by_certified_snap() {
         // facing against the surface lie there. Away from the fold, they
         // are counted and bounded, so that they cannot grow unnoticed:
         // any change to the sizes moves them (0–34 below 20° not forced by
-        // a feature, 0–1 facing against, as the sizes' bound varied).
+        // a feature by the remesher's own count, 0–1 facing against, as
+        // the sizes' bound varied). By the input's sectors (decided in the
+        // test), 14 of the 21 below 20° there are not forced (2026-12-01):
+        // the bound.
         let folds = next_to_folds(&net);
         assert!(!folds.is_empty(), "pig's fold is no longer found");
         let rest = without(&mesh, &folds);
-        let against = facing_against(name, &surface, &rest, 1);
+        let (against, at_folds) = facing_against(name, &surface, &rest, 1);
+        assert_eq!(at_folds, 0, "{name}: triangles face their own sheet");
         let q = rest.quality();
-        let unforced = ((q.below_20 * rest.triangles.len() as f64).round() as usize)
-            .saturating_sub(q.below_20_at_features);
+        let small = sectors::small_angles(&surface, &rest, 20.0);
+        let unforced: Vec<_> = small.iter().filter(|s| !s.forced(20.0)).collect();
         println!(
-            "{name}: {} triangles next to the fold left out; on the rest {} below 20° not forced by a feature (min {:.2}°), {} facing against the surface",
+            "{name}: {} triangles next to the fold left out; on the rest {} below 20°, {} not forced by the input's sectors (min {:.2}°), {} facing against the surface",
             mesh.triangles.len() - rest.triangles.len(),
-            unforced,
+            small.len(),
+            unforced.len(),
             q.min_angle,
             against.len()
         );
         assert!(
-            unforced <= 60,
-            "{name}: {unforced} triangles below 20° away from features"
+            unforced.len() <= 14,
+            "{name}: {} triangles below 20° that the input does not force: {}",
+            unforced.len(),
+            sectors::list(&unforced)
         );
         assert!(
             against.len() <= 3,
@@ -654,6 +707,9 @@ fn gradation_bounds_how_fast_sizes_change() {
 /// centroid; 1.4–2.1% and 48.7–49.1° before). On the folds every change
 /// elsewhere moves those figures (variants of the split placement tried
 /// on 2026-11-29 gave 1.5–2.8%, one 18%): the bounds catch a runaway.
+/// They are those first set (at most 0.5% below 20°, mean-min at least
+/// 49.5°, at most 5 triangles facing against the surface), met again on
+/// 2026-12-01 (0.21%, 49.89°, 3).
 #[test]
 fn high_valence_fans_do_not_run_away() {
     // None only under LOOPSURF_SKIP_DATA.
@@ -667,9 +723,9 @@ fn high_valence_fans_do_not_run_away() {
         "anchor: {} triangles",
         mesh.triangles.len()
     );
-    assert!(q.below_20 <= 0.02, "anchor: {} below 20°", q.below_20);
+    assert!(q.below_20 <= 0.005, "anchor: {} below 20°", q.below_20);
     assert!(
-        q.mean_min_angle >= 49.0,
+        q.mean_min_angle >= 49.5,
         "anchor: mean-min {}",
         q.mean_min_angle
     );
@@ -684,10 +740,19 @@ fn high_valence_fans_do_not_run_away() {
     let folded = loopsurf::folds::folded_patches(&surface);
     assert!(!folded.is_empty(), "anchor: no folded patch found");
     let corners: HashSet<u32> = folded.iter().flat_map(|&t| net.triangles()[t]).collect();
-    let against = facing_against("anchor", &surface, &mesh, 1);
+    let (against, at_folds) = facing_against("anchor", &surface, &mesh, 1);
     println!(
         "anchor: {} triangles face against the surface, patches {folded:?} fold",
         against.len()
+    );
+    // 3 and 8 when measured (2026-12-01).
+    assert!(
+        against.len() <= 5,
+        "anchor: triangles {against:?} face against the surface"
+    );
+    assert!(
+        at_folds <= 8,
+        "anchor: {at_folds} triangles face their own sheet"
     );
     for t in against {
         let beside = mesh.triangles[t].iter().any(|&v| {
