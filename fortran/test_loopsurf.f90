@@ -1,6 +1,8 @@
 ! The Fortran module against real properties of the surface: an octahedron
 ! net built from 1-based arrays, evaluated one by one and in a batch,
 ! translated, streamed, refined, snapped, interpolated, and fed bad input.
+! Fortran may evaluate the operands of .and. in any order (or skip one), so
+! a call and a test of its outputs always take two statements.
 program test_loopsurf
     use loopsurf
     use, intrinsic :: iso_c_binding
@@ -22,7 +24,8 @@ program test_loopsurf
     tris = reshape([1, 3, 5, 3, 2, 5, 2, 4, 5, 4, 1, 5, &
                     3, 1, 6, 2, 3, 6, 4, 2, 6, 1, 4, 6], [3, 8])
     call check(loopsurf_from_arrays(xyz, tris, net) == LS_OK, "from_arrays")
-    call check(ls_net_counts(net, nv, nt, nh) == LS_OK .and. nv == 6 .and. nt == 8 .and. nh == 0, "counts")
+    call check(ls_net_counts(net, nv, nt, nh) == LS_OK, "counts")
+    call check(nv == 6 .and. nt == 8 .and. nh == 0, "counts: 6, 8, 0")
     call check(loopsurf_tag_edge(net, 1, 3) == LS_OK, "tag_edge (1-based)")
     call check(loopsurf_tag_edge(net, 1, 2) == LS_ERR_INVALID_ARGUMENT, "not an edge")
     call check(loopsurf_tag_edge(net, 1, 7) == LS_ERR_INDEX_OUT_OF_RANGE, "vertex 7 of 6")
@@ -62,9 +65,11 @@ program test_loopsurf
     call check(index(loopsurf_status_string(LS_ERR_NOT_FINITE), "LS_ERR_NOT_FINITE") == 1, "status string")
 
     ! Save, load: bit-identical evaluations.
-    call check(ls_surface_save(surf, bytes, n) == LS_OK .and. n > 0, "save")
+    call check(ls_surface_save(surf, bytes, n) == LS_OK, "save")
+    call check(n > 0, "save: bytes")
     call check(ls_surface_load(bytes, n, surf3) == LS_OK, "load")
-    call check(ls_surface_load(bytes, n - 1, surf2) == LS_ERR_BAD_STREAM .and. c_associated(surf2), "truncated stream")
+    call check(ls_surface_load(bytes, n - 1, surf2) == LS_ERR_BAD_STREAM, "truncated stream")
+    call check(c_associated(surf2), "truncated stream: a handle")
     call ls_free_bytes(bytes, n)
     call check(loopsurf_evaluate(surf3, 5, 0.1d0, 0.7d0, r2) == LS_OK, "eval loaded")
     call check(loopsurf_evaluate(surf, 5, 0.1d0, 0.7d0, r) == LS_OK, "eval original")
@@ -76,7 +81,8 @@ program test_loopsurf
     call check(nt == 128 .and. nv == 66, "refined counts")
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
-    call check(ls_refine_origins(surf, 2_c_int, n, rxyz, rtris) == LS_OK .and. n == 66, "refine origins")
+    call check(ls_refine_origins(surf, 2_c_int, n, rxyz, rtris) == LS_OK, "refine origins")
+    call check(n == 66, "refine origins: 66")
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
     ! Partition of the octahedron into 4 parts of 2 triangles each; the
@@ -91,7 +97,8 @@ program test_loopsurf
         call check(po%struct_size == c_sizeof(po) .and. po%parts == 1 .and. po%seed == 1, &
                    "partition options: defaults")
         po%parts = 4
-        call check(ls_net_partition(net, po, nt, part_c, cut) == LS_OK .and. nt == 8, "partition")
+        call check(ls_net_partition(net, po, nt, part_c, cut) == LS_OK, "partition")
+        call check(nt == 8, "partition: 8 triangles")
         call c_f_pointer(part_c, part, [nt])
         do i = 0, 3
             call check(count(part == i) == 2, "partition: two triangles a part")
@@ -186,7 +193,8 @@ program test_loopsurf
             type(ls_mesh_curve_options) :: co
             ro%size = 0.4d0
             call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_OK, "remesh for curve")
-            call check(ls_mesh_curve_options_default(co) == LS_OK .and. co%order == 2, "curve options")
+            call check(ls_mesh_curve_options_default(co) == LS_OK, "curve options")
+            call check(co%order == 2, "curve options: order 2")
             call check(loopsurf_mesh_curve(surf, rx, rt, co, cn, ctri, cvw, cel, cface, moved, jac) == LS_OK, &
                 "curve")
             call check(size(cel, 1) == 6 .and. size(cel, 2) == size(rt, 2), "curve: P2 elements")
@@ -219,12 +227,15 @@ program test_loopsurf
         ao%levels = 11
         call check(ls_adapt(surf, ao, mesh) == LS_ERR_INVALID_ARGUMENT, "adapt levels 11")
     end block
-    call check(ls_net_hard_edges(net, n, rxyz) == LS_OK .and. n == 1, "hard edges")
+    call check(ls_net_hard_edges(net, n, rxyz) == LS_OK, "hard edges")
+    call check(n == 1, "hard edges: 1")
     call ls_free_array(rxyz)
     ! The octahedron's surface does not fold, nor does its net.
-    call check(ls_surface_folded_patches(surf, n, rxyz) == LS_OK .and. n == 0, "folded patches")
+    call check(ls_surface_folded_patches(surf, n, rxyz) == LS_OK, "folded patches")
+    call check(n == 0, "folded patches: none")
     call ls_free_array(rxyz)
-    call check(ls_net_folds(net, 150d0, n, rxyz, rtris, mvw) == LS_OK .and. n == 0, "net folds")
+    call check(ls_net_folds(net, 150d0, n, rxyz, rtris, mvw) == LS_OK, "net folds")
+    call check(n == 0, "net folds: none")
     call ls_free_array(rxyz)
     call ls_free_array(rtris)
     call ls_free_array(mvw)
@@ -310,12 +321,13 @@ contains
         type(ls_fit_options) :: fo
         integer(c_size_t) :: tagged, fv, ft, fh
         call check(loopsurf_from_arrays(xyz, tris, oct) == LS_OK, "fit: from_arrays")
-        call check(ls_net_tag_by_angle(oct, 30d0, tagged) == LS_OK .and. tagged == 12, "fit: tag")
-        call check(ls_fit_options_default(fo) == LS_OK .and. fo%resolution == 0.03d0 &
-            .and. fo%tolerance == 1d-4, "fit options")
+        call check(ls_net_tag_by_angle(oct, 30d0, tagged) == LS_OK, "fit: tag")
+        call check(tagged == 12, "fit: 12 tagged")
+        call check(ls_fit_options_default(fo) == LS_OK, "fit options")
+        call check(fo%resolution == 0.03d0 .and. fo%tolerance == 1d-4, "fit options: defaults")
         call check(ls_net_fit(oct, fo, fitted) == LS_OK, "fit")
-        call check(ls_net_counts(fitted, fv, ft, fh) == LS_OK .and. fv > 100 .and. ft == 2 * fv - 4 &
-            .and. fh >= 12, "fitted counts")
+        call check(ls_net_counts(fitted, fv, ft, fh) == LS_OK, "fitted counts")
+        call check(fv > 100 .and. ft == 2 * fv - 4 .and. fh >= 12, "fitted counts: values")
         call ls_net_free(fitted)
         fo%resolution = 2d0
         call check(ls_net_fit(oct, fo, fitted) == LS_ERR_INVALID_ARGUMENT, "fit: resolution refused")
@@ -341,8 +353,6 @@ contains
         cube_tris = reshape([1, 3, 2, 1, 4, 3, 5, 6, 7, 5, 7, 8, 1, 2, 6, 1, 6, 5, &
                              2, 3, 7, 2, 7, 6, 3, 4, 8, 3, 8, 7, 4, 1, 5, 4, 5, 8], [3, 12])
         call check(loopsurf_from_arrays(cube, cube_tris, cnet) == LS_OK, "cube")
-        ! (Fortran may evaluate the operands of .and. in any order: a call and
-        ! a test of its outputs take two statements.)
         call check(ls_net_tag_by_angle(cnet, 30d0, ntagged) == LS_OK, "tag cube")
         call check(ntagged == 12, "cube edges hard")
         call check(ls_surface_build(cnet, csurf) == LS_OK, "cube surface")
