@@ -49,7 +49,9 @@ pub enum Error {
         nverts: usize,
     },
     /// A triangle uses the same vertex twice.
-    #[error("triangle {tri} {verts:?} repeats vertex {index}")]
+    #[error(
+        "triangle {tri} {verts:?} repeats vertex {index} (--weld, LS_LOAD_WELD in C, drops it)"
+    )]
     RepeatedIndex {
         tri: usize,
         verts: [u32; 3],

@@ -39,9 +39,17 @@ pub(super) fn split_nonmanifold(mesh: &mut MeshData) -> Option<Repair> {
             }
         }
     }
-    // The corners of each vertex, in triangle order.
+    // The corners of each vertex, in triangle order. A triangle listing a
+    // vertex twice is left to validation (or to the weld, which drops it):
+    // its corners are no fan, and copies would make it a separate piece of
+    // zero area with two corners on one point.
     let mut corners: Vec<Vec<usize>> = vec![Vec::new(); nverts];
-    let valid = |t: &[i64; 3]| t.iter().all(|&i| i >= 0 && (i as usize) < nverts);
+    let valid = |t: &[i64; 3]| {
+        t.iter().all(|&i| i >= 0 && (i as usize) < nverts)
+            && t[0] != t[1]
+            && t[1] != t[2]
+            && t[0] != t[2]
+    };
     for t in 0..mesh.tris.len() {
         if valid(&mesh.tris[t]) {
             for k in 0..3 {
@@ -122,6 +130,18 @@ mod tests {
                 splits: vec![(0, vec![6])]
             })
         );
+    }
+
+    #[test]
+    fn a_triangle_listing_a_vertex_twice_is_left_to_validation() {
+        // A tetrahedron and a fifth triangle repeating vertex 0: no copies.
+        let mut m = MeshData {
+            points: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            tris: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 0, 1]],
+            ..MeshData::default()
+        };
+        assert_eq!(split_nonmanifold(&mut m), None);
+        assert_eq!(m.tris[4], [0, 0, 1]);
     }
 
     #[test]

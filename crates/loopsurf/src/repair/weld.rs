@@ -20,7 +20,8 @@ use super::{edge_incidences, Repair};
 use crate::io::MeshData;
 
 /// Welds `mesh` at `eps` × its bounding-box diagonal, then drops the
-/// triangles welding collapsed (two corners merged) or duplicated (the same
+/// triangles welding collapsed (two corners merged, or listed twice in the
+/// file: a repeated vertex is a weld already made) or duplicated (the same
 /// three corners as an earlier triangle, in either orientation).
 pub(super) fn weld(mesh: &mut MeshData, eps: f64) -> Vec<Repair> {
     let distance = eps * diagonal(&mesh.points);
@@ -38,10 +39,13 @@ pub(super) fn weld(mesh: &mut MeshData, eps: f64) -> Vec<Repair> {
     let target = merge_targets(&mesh.points, &open, distance);
     let merged = target.iter().enumerate().filter(|&(i, &t)| t != i).count();
     let mut report = Vec::new();
-    if merged == 0 {
+    let repeats = |t: &[i64; 3]| t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if merged == 0 && !mesh.tris.iter().any(repeats) {
         return report;
     }
-    report.push(Repair::Welded { merged, distance });
+    if merged > 0 {
+        report.push(Repair::Welded { merged, distance });
+    }
     for tri in &mut mesh.tris {
         for i in tri.iter_mut() {
             if let Some(&t) = usize::try_from(*i).ok().and_then(|i| target.get(i)) {
@@ -56,7 +60,7 @@ pub(super) fn weld(mesh: &mut MeshData, eps: f64) -> Vec<Repair> {
         .iter()
         .enumerate()
         .map(|(t, tri)| {
-            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            if repeats(tri) {
                 collapsed.push(t);
                 return false;
             }
