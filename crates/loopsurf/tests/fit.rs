@@ -98,7 +98,10 @@ fn cylinder_rims_on_the_true_edges() {
     );
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
-    assert!(d.max < facets.max && d.mean < facets.mean, "{d:?} against {facets:?}");
+    assert!(
+        d.max < facets.max && d.mean < facets.mean,
+        "{d:?} against {facets:?}"
+    );
     // Pinned as measured: 1.8e-4 / 1.5e-5 (fitted to the vertices alone it
     // was 1.1e-3 / 4.3e-4).
     assert!(d.max <= 1.9e-4 && d.mean <= 1.6e-5, "{d:?}");
@@ -122,7 +125,10 @@ fn cone_apex_is_kept() {
         .iter()
         .map(|p| p.distance(apex))
         .fold(f64::INFINITY, f64::min);
-    assert!(nearest <= 1e-4 * shape.diagonal(), "apex missed by {nearest:e}");
+    assert!(
+        nearest <= 1e-4 * shape.diagonal(),
+        "apex missed by {nearest:e}"
+    );
     let surface = Surface::new(&fit.net).unwrap();
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     // Pinned as measured: 3.8e-3 / 7.2e-5.

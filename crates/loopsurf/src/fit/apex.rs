@@ -32,9 +32,15 @@ pub fn apexes(net: &ControlNet) -> Vec<u32> {
             let normals: Vec<_> = topo
                 .fan(v)
                 .iter()
-                .map(|&t| unit_normal(topo.triangles()[t as usize].map(|i| net.points()[i as usize])))
+                .map(|&t| {
+                    unit_normal(topo.triangles()[t as usize].map(|i| net.points()[i as usize]))
+                })
                 .collect();
-            let mean = normals.iter().copied().sum::<glam::DVec3>().normalize_or_zero();
+            let mean = normals
+                .iter()
+                .copied()
+                .sum::<glam::DVec3>()
+                .normalize_or_zero();
             mean != glam::DVec3::ZERO && normals.iter().all(|n| n.dot(mean) < cos)
         })
         .collect()

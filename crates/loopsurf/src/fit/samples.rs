@@ -73,7 +73,9 @@ pub fn between_vertices(input: &ControlNet, spacing: f64) -> Samples {
     let equilateral = 3f64.sqrt() / 4.0 * spacing * spacing;
     for &t in topo.triangles() {
         let corners = t.map(|v| points[v as usize]);
-        let n = (crate::geometry::area(corners) / equilateral).sqrt().round() as usize;
+        let n = (crate::geometry::area(corners) / equilateral)
+            .sqrt()
+            .round() as usize;
         if n < 3 {
             continue;
         }
@@ -167,7 +169,9 @@ fn crease_circle(input: &ControlNet, kinds: &[VertexKind], a: u32) -> Option<(DV
     if kinds[a as usize] != VertexKind::Crease {
         return None;
     }
-    let hard = input.features().hard_neighbours(input.topology(), a as usize);
+    let hard = input
+        .features()
+        .hard_neighbours(input.topology(), a as usize);
     let [n0, n2] = hard[..] else {
         return None;
     };
@@ -176,10 +180,12 @@ fn crease_circle(input: &ControlNet, kinds: &[VertexKind], a: u32) -> Option<(DV
     // Inverted about `a`, the circle through the three points is a line
     // through the images of the other two: parallel to the tangent at `a`,
     // at 1/(2R) from it towards the centre.
-    let (i0, i2) = [n0, n2].map(|n| {
-        let d = points[n as usize] - p;
-        d / d.length_squared()
-    }).into();
+    let (i0, i2) = [n0, n2]
+        .map(|n| {
+            let d = points[n as usize] - p;
+            d / d.length_squared()
+        })
+        .into();
     let t = (i2 - i0).try_normalize()?;
     Some((t, 2.0 * (i0 - i0.dot(t) * t)))
 }
