@@ -131,8 +131,9 @@ fn cone_apex_is_kept() {
     );
     let surface = Surface::new(&fit.net).unwrap();
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
-    // Pinned as measured: 3.8e-3 / 7.2e-5.
-    assert!(d.max <= 4.0e-3 && d.mean <= 7.6e-5, "{d:?}");
+    // Pinned as measured: 1.5e-3 / 6.6e-5 (3.8e-3 / 7.2e-5 while the start
+    // net closed the apex with three triangles).
+    assert!(d.max <= 1.6e-3 && d.mean <= 7.0e-5, "{d:?}");
 }
 
 /// A tolerance that cannot be met is refused by name, with the input
