@@ -248,11 +248,42 @@ impl SurfaceOptions {
         if self.fit.fit {
             return Surface::new(&self.fit.apply(net.clone())?);
         }
-        let mode = match self.interpolate {
-            None => SurfaceMode::Approximating,
-            Some(Interpolate::Solve) => SurfaceMode::Solve,
-            Some(Interpolate::Displacement) => SurfaceMode::Displacement,
+        let (mode, name) = match self.interpolate {
+            None => return Surface::new(net),
+            Some(Interpolate::Solve) => (SurfaceMode::Solve, "solved"),
+            Some(Interpolate::Displacement) => (SurfaceMode::Displacement, "displacement"),
         };
-        Surface::with_mode(net, mode)
+        let surface = Surface::with_mode(net, mode)?;
+        warn_of_wiggles(net, &surface, name)?;
+        Ok(surface)
     }
+}
+
+/// Says on stderr, with what was measured, where an interpolating surface
+/// wiggles or folds, and points to `--fit`. Interpolants pass through the
+/// mesh's points but, on the long triangles of CAD exports, swing between
+/// them (docs/fitting.md measures up to 140 times the facets' distance);
+/// a fitted net stays near the points without passing through them.
+fn warn_of_wiggles(net: &ControlNet, surface: &Surface, name: &str) -> Result<(), Error> {
+    let mut findings = Vec::new();
+    if surface.mode() == SurfaceMode::Solve {
+        findings = loopsurf::fairness::fairness(net, surface.net())?.warnings();
+    }
+    let folded = loopsurf::folds::folded_patches(surface);
+    if let Some(first) = folded.first() {
+        findings.push(format!(
+            "the surface folds over itself in {} control triangle{} (first: {first})",
+            folded.len(),
+            if folded.len() == 1 { "" } else { "s" }
+        ));
+    }
+    for finding in &findings {
+        eprintln!("loopsurf: warning: {name} surface: {finding}");
+    }
+    if !findings.is_empty() {
+        eprintln!(
+            "loopsurf: warning: {name} surface: it wiggles between the mesh's points; `--fit` fits a fair surface near them instead (docs/fitting.md)"
+        );
+    }
+    Ok(())
 }

@@ -101,3 +101,39 @@ fn eval_on_the_fitted_net() {
     assert_eq!(numbers, 18);
     assert!(text(&out.stderr).contains("loopsurf: fit: distance to the input vertices"));
 }
+
+/// An interpolant that folds says so, with what was measured, and points
+/// to `--fit`: on the filleted box both interpolants fold (the box's
+/// long fillet slivers), on the cylinder neither does, and the
+/// approximating surface of the box is not warned about.
+#[test]
+fn interpolants_that_fold_point_to_fit() {
+    use loopsurf::cad::Analytic;
+    let write = |shape: &dyn Analytic, name: &str| {
+        let path = scratch(name);
+        let ex = shape.tessellation();
+        loopsurf::io::write_obj(&path, &ex.points, &ex.tris).unwrap();
+        path
+    };
+    let box_path = write(&loopsurf::cad::FilletedBox::new(5e-4, 15.0), "box.obj");
+    let cylinder = loopsurf::cad::cylinder(5e-4, 15.0, loopsurf::cad::CapStyle::Fan);
+    let cylinder_path = write(&cylinder, "cylinder.obj");
+    let eval = |path: &std::path::Path, mode: Option<&str>| {
+        let mut args = vec!["eval", path.to_str().unwrap(), "--hard-angle", "30"];
+        if let Some(m) = mode {
+            args.extend(["--interpolate", m]);
+        }
+        let out = loopsurf_with_stdin(&args, "0 0.25 0.25\n");
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        text(&out.stderr)
+    };
+    for mode in ["solve", "displacement"] {
+        let warned = eval(&box_path, Some(mode));
+        assert!(warned.contains("folds over itself in"), "{mode}: {warned}");
+        assert!(warned.contains("`--fit`"), "{mode}: {warned}");
+        let quiet = eval(&cylinder_path, Some(mode));
+        assert!(!quiet.contains("warning"), "{mode}: {quiet}");
+    }
+    let approximating = eval(&box_path, None);
+    assert!(!approximating.contains("warning"), "{approximating}");
+}

@@ -4,14 +4,15 @@
 //! approximating Loop surface and the two interpolants to the exact
 //! surface, plus their mean-curvature error on the sphere, cylinder and
 //! torus; and the same of the fitted surrogate ([`loopsurf::fit`]), a new
-//! control net fitted to the tessellation's vertices. This is the table of
-//! docs/fitting.md.
+//! control net fitted to the tessellation's vertices; and how fair the
+//! fit is: its surface remeshed at a tight tolerance against the surface of
+//! a 16× finer tessellation. These are the tables of docs/fitting.md.
 //!
 //! `cargo run --release -p loopsurf --example surrogates`
 
 use loopsurf::cad::{self, Analytic, CapStyle, Deviation};
 use loopsurf::DVec3;
-use loopsurf::{ControlNet, Fitter, Surface, SurfaceMode};
+use loopsurf::{folds, ControlNet, Fitter, Remesher, Surface, SurfaceMode};
 use std::time::Instant;
 
 /// Chord tolerance of the tessellations, relative to the diagonal.
@@ -22,6 +23,9 @@ const ANGLE: f64 = 15.0;
 const CREASE_ANGLE: f64 = 30.0;
 /// Lattice steps per control triangle edge: 28 samples per triangle.
 const LATTICE: usize = 6;
+/// The chord tolerance the fitted surfaces are remeshed at, relative to
+/// the diagonal.
+const FAIR_TOLERANCE: f64 = 1e-4;
 /// Curvature is compared this far (relative to the diagonal) from sharp
 /// features and blend seams.
 const MARGIN: f64 = 0.1;
@@ -144,6 +148,7 @@ fn main() -> loopsurf::Result<()> {
     curvature_table(curvature_rows);
     sphere_by_latitude(shapes[1].as_ref())?;
     finer_facets_table();
+    fairness_table(&shapes)?;
     fit_timing()?;
     println!("\n({:.1} s)", start.elapsed().as_secs_f64());
     Ok(())
@@ -178,6 +183,16 @@ fn distance_table(
     let cone = cad::cone(CHORD, ANGLE);
     let mut net = cone.net()?;
     net.tag_by_angle(CREASE_ANGLE)?;
+    tag_apex(&mut net)?;
+    row(&cone, "cone, apex tagged", &net, &mut notes)?;
+    for note in &notes {
+        println!("\n{note}");
+    }
+    Ok(curvature_rows)
+}
+
+/// Tags the cone's apex, known from its construction, as a corner.
+fn tag_apex(net: &mut ControlNet) -> loopsurf::Result<()> {
     let apex = DVec3::new(0.0, 0.0, cad::CONE_HEIGHT);
     let index = net
         .points()
@@ -185,11 +200,7 @@ fn distance_table(
         .position(|&p| p == apex)
         .expect("the apex is a vertex");
     net.tag_vertex(index as u32)?;
-    row(&cone, "cone, apex tagged", &net, &mut notes)?;
-    for note in &notes {
-        println!("\n{note}");
-    }
-    Ok(curvature_rows)
+    Ok(())
 }
 
 /// The mean-curvature error of each surrogate, away from features.
@@ -260,6 +271,46 @@ fn finer_facets_table() {
             cell(&facets)
         );
     }
+}
+
+/// The fitted surfaces remeshed at the chord tolerance [`FAIR_TOLERANCE`],
+/// against the approximating surface of the 16× finer tessellation (a
+/// stand-in for the true surface, the cone's apex tagged by hand): a
+/// surface that wiggles needs more triangles for the same tolerance, and
+/// folds.
+fn fairness_table(shapes: &[Box<dyn Analytic>]) -> loopsurf::Result<()> {
+    println!(
+        "\nRemeshed at tolerance {FAIR_TOLERANCE:e} (`Remesher::tolerance`): the fit against the \
+         approximating surface of the 16× finer tessellation:\n"
+    );
+    println!("| shape | fit: triangles | mean-min | min angle | folded patches | finer: triangles | ratio |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for (shape, finer) in shapes.iter().zip(cad::all(CHORD / 16.0, ANGLE)) {
+        let mut net = shape.net()?;
+        net.tag_by_angle(CREASE_ANGLE)?;
+        let fit = fitted(&net)?;
+        let mesh = Remesher::new(&fit).tolerance(FAIR_TOLERANCE).run()?;
+        let q = mesh.quality();
+        let mut fine = finer.net()?;
+        fine.tag_by_angle(CREASE_ANGLE)?;
+        if finer.name() == "cone" {
+            tag_apex(&mut fine)?;
+        }
+        let reference = Remesher::new(&Surface::new(&fine)?)
+            .tolerance(FAIR_TOLERANCE)
+            .run()?;
+        println!(
+            "| {} | {} | {:.2}° | {:.1}° | {} | {} | {:.2} |",
+            shape.name(),
+            mesh.triangles.len(),
+            q.mean_min_angle,
+            q.min_angle,
+            folds::folded_patches(&fit).len(),
+            reference.triangles.len(),
+            mesh.triangles.len() as f64 / reference.triangles.len() as f64
+        );
+    }
+    Ok(())
 }
 
 /// The time to fit a 100k-triangle input: the sphere at the finer chord.

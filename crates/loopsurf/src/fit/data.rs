@@ -26,6 +26,7 @@
 //! is 1/4ᵏ of the crease's own).
 
 use super::rows::{apply, Row, Rows};
+use super::samples::between_vertices;
 use crate::error::Result;
 use crate::features::VertexKind;
 use crate::net::ControlNet;
@@ -36,9 +37,11 @@ use rayon::prelude::*;
 
 /// The data of one fit.
 pub struct Data {
-    /// Data points (input vertices) and whether each lies on a feature.
+    /// Data points, the input vertices first, then the points predicted
+    /// between them ([`super::samples`]), and whether each lies on a
+    /// feature.
     pub points: Vec<DVec3>,
-    /// The input vertex of each datum.
+    /// The input vertex of each of the first data.
     pub vertices: Vec<usize>,
     pub on_feature: Vec<bool>,
     /// Each surface datum's footpoint (tri, v, w) on the current surface.
@@ -56,21 +59,27 @@ pub struct Equation {
 }
 
 impl Data {
-    /// Every referenced vertex of `input`, split by kind.
-    pub fn new(input: &ControlNet) -> Data {
+    /// Every referenced vertex of `input`, split by kind, and the points
+    /// predicted between them about `spacing` apart.
+    pub fn new(input: &ControlNet, spacing: f64) -> Data {
         let kinds = input.vertex_kinds();
         let topo = input.topology();
         let used: Vec<usize> = (0..input.points().len())
             .filter(|&v| !topo.is_unreferenced(v))
             .collect();
+        let samples = between_vertices(input, spacing);
+        let mut points: Vec<DVec3> = used.iter().map(|&v| input.points()[v]).collect();
+        let mut on_feature: Vec<bool> = used
+            .iter()
+            .map(|&v| matches!(kinds[v], VertexKind::Crease | VertexKind::Corner))
+            .collect();
+        points.extend(samples.points);
+        on_feature.extend(samples.on_feature);
         Data {
-            points: used.iter().map(|&v| input.points()[v]).collect(),
-            vertices: used.clone(),
-            on_feature: used
-                .iter()
-                .map(|&v| matches!(kinds[v], VertexKind::Crease | VertexKind::Corner))
-                .collect(),
-            footpoints: vec![None; used.len()],
+            footpoints: vec![None; points.len()],
+            points,
+            vertices: used,
+            on_feature,
         }
     }
 

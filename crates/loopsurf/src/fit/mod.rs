@@ -9,14 +9,18 @@
 //! & Kobbelt (optimization methods for scattered data approximation with
 //! subdivision surfaces, 2005):
 //!
-//! 1. [`start`]: the control net is the input's approximating surface
-//!    remeshed by [`crate::Remesher`] at the chosen size, its crease
-//!    chains and corners tagged, so the new creases lie on the input's
-//!    feature lines.
-//! 2. [`data`]: the data are the input's vertices; those on hard edges
-//!    and corners are fitted by the crease curves, the rest by the
-//!    surface. Each round projects every datum onto the current surface
-//!    (parameter correction) and gives it one equation.
+//! 1. [`apex`]: cone apexes, which no dihedral angle marks, are tagged
+//!    as corners. [`start`]: the control net is the input's approximating
+//!    surface remeshed by [`crate::Remesher`] at the chosen size, its
+//!    crease chains and corners tagged, so the new creases lie on the
+//!    input's feature lines.
+//! 2. [`data`]: the data are the input's vertices and, where the input's
+//!    edges and triangles are longer than the net's spacing, points
+//!    predicted between them from the tangent planes at the vertices
+//!    ([`samples`]); those on hard edges and corners are fitted by the
+//!    crease curves, the rest by the surface. Each round projects every
+//!    datum onto the current surface (parameter correction) and gives it
+//!    one equation.
 //! 3. [`rows`]: the limit surface is linear in the control points; a
 //!    datum's row is the exact limit position of the level-3 refined
 //!    vertex nearest its footpoint (subdivision and limit masks composed
@@ -34,13 +38,16 @@
 //! the caller never gets a worse surface without knowing it. The report
 //! of a fit that met it is in [`Fit::report`].
 
+mod apex;
 mod data;
 mod fairness;
 mod report;
 mod rows;
+mod samples;
 mod solve;
 mod start;
 
+pub use apex::{apexes, APEX_ANGLE_DEGREES};
 pub use report::{Distances, FitReport};
 
 use crate::error::{Error, Result};
@@ -58,10 +65,9 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 /// number of data over the number of control points): strong first, when
 /// the footpoints are poor, then weighted down as the fit converges. The
 /// last rounds keep 1e-3, which is what keeps the net from wiggling where
-/// the data are sparse (along a cylinder's slivers there are no data
-/// between the rims); less lets the vertices be met more closely and the
-/// surface between them stray further (measured on the CAD shapes of
-/// docs/fitting.md).
+/// the data are sparse; a tenth or a hundredth of it fits the CAD shapes
+/// of docs/fitting.md no closer, and the filleted box up to ten times
+/// farther.
 pub const LAMBDA: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-3, 1e-3];
 
 /// A fit: configure it, then [`Fitter::run`].
@@ -119,6 +125,10 @@ impl<'a> Fitter<'a> {
         if let Some(a) = self.hard_angle {
             input.tag_by_angle(a)?;
         }
+        let apexes = apex::apexes(&input);
+        for &v in &apexes {
+            input.tag_vertex(v)?;
+        }
         let diagonal = input.bbox_diagonal();
         let size = self.resolution.unwrap_or(DEFAULT_RESOLUTION * diagonal);
         if !(size.is_finite() && size > 0.0) {
@@ -135,7 +145,7 @@ impl<'a> Fitter<'a> {
         let net = start::control_net(&input, size)?;
         let rows = rows::Rows::new(&net)?;
         let fairness = fairness::normal_matrix(&net);
-        let mut data = data::Data::new(&input);
+        let mut data = data::Data::new(&input, size);
         let mut x: Vec<DVec3> = net.points().to_vec();
         let per_datum = data.points.len() as f64 / x.len() as f64;
         for &lambda in &LAMBDA {
@@ -156,7 +166,7 @@ impl<'a> Fitter<'a> {
         }
         let net = net.with_points(x);
         let surface = Surface::new(&net)?;
-        let vertices = report::distances(&surface, &data.points, diagonal)?;
+        let vertices = report::distances(&surface, &data.points[..data.vertices.len()], diagonal)?;
         if vertices.max > self.tolerance {
             return Err(Error::FitTolerance {
                 vertex: data.vertices[vertices.worst],
@@ -176,6 +186,7 @@ impl<'a> Fitter<'a> {
             max_normal_turn,
             mean_curvature,
             min_angle,
+            apexes: apexes.len(),
             control_vertices: net.points().len(),
             control_triangles: net.triangles().len(),
             rounds: LAMBDA.len(),

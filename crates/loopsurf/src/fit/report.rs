@@ -38,6 +38,9 @@ pub struct FitReport {
     pub mean_curvature: (f64, f64),
     /// The smallest angle of the control triangles, degrees.
     pub min_angle: f64,
+    /// Input vertices found to be apexes ([`super::apexes`]) and kept as
+    /// corners.
+    pub apexes: usize,
     /// Control vertices and triangles of the fitted net.
     pub control_vertices: usize,
     pub control_triangles: usize,

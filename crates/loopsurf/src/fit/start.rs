@@ -16,6 +16,7 @@ use crate::error::Result;
 use crate::net::ControlNet;
 use crate::remesh::Remesher;
 use crate::surface::Surface;
+use glam::DVec3;
 
 /// The remeshed control net of `input` (its features already tagged) with
 /// edges of about `size` (model units).
@@ -25,24 +26,78 @@ pub fn control_net(input: &ControlNet, size: f64) -> Result<ControlNet> {
         .size(size)
         .run()
         .map_err(|e| e.during("fit: remeshing the input's surface"))?;
-    let mut net = ControlNet::from_arrays(mesh.points.clone(), &mesh.triangles)
+    // A tagged input corner on a smooth or crease vertex is not implied by
+    // the hard-edge count: carry the tag over where a new vertex sits on it.
+    let topo = input.topology();
+    let corners: Vec<u32> = mesh
+        .params
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let k = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]
+                .iter()
+                .position(|&(v, w)| p.v == v && p.w == w)?;
+            let vertex = topo.triangles()[p.tri as usize][k] as usize;
+            input.features().is_tagged_vertex(vertex).then_some(i as u32)
+        })
+        .collect();
+    let (mut points, mut triangles) = (mesh.points.clone(), mesh.triangles.clone());
+    for &c in &corners {
+        open_apex_fan(&mut points, &mut triangles, &mesh.hard_edges, c);
+    }
+    let mut net = ControlNet::from_arrays(points, &triangles)
         .map_err(|e| e.during("fit: the remeshed control net"))?;
     for &[a, b] in &mesh.hard_edges {
         net.tag_edge(a, b)?;
     }
-    // A tagged input corner on a smooth or crease vertex is not implied by
-    // the hard-edge count: carry the tag over where a new vertex sits on it.
-    let topo = input.topology();
-    for (i, p) in mesh.params.iter().enumerate() {
-        let corner = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]
-            .iter()
-            .position(|&(v, w)| p.v == v && p.w == w);
-        if let Some(k) = corner {
-            let vertex = topo.triangles()[p.tri as usize][k] as usize;
-            if input.features().is_tagged_vertex(vertex) {
-                net.tag_vertex(i as u32)?;
+    for &c in &corners {
+        net.tag_vertex(c)?;
+    }
+    Ok(net)
+}
+
+/// The fewest triangles the fit wants around an apex (a tagged corner with
+/// no hard edge).
+const APEX_VALENCE: usize = 6;
+
+/// Splits the edges facing corner `c` at their midpoints when `c` is an
+/// apex with fewer than [`APEX_VALENCE`] triangles. The remesher closes a
+/// cone's tip, whose angles sum to little more than 180°, with three or
+/// four triangles; Loop's surface around so few turns the round cone into
+/// a three-sided spike, which the fit cannot straighten and a remesh of
+/// the fitted surface fills with needles. Each split adds one triangle to
+/// the apex's fan (and halves the triangle across the edge).
+fn open_apex_fan(points: &mut Vec<DVec3>, triangles: &mut Vec<[u32; 3]>, hard: &[[u32; 2]], c: u32) {
+    let is_hard = |a: u32, b: u32| hard.iter().any(|&[x, y]| (x, y) == (a, b) || (x, y) == (b, a));
+    let fan: Vec<[u32; 3]> = triangles.iter().copied().filter(|t| t.contains(&c)).collect();
+    if fan.len() >= APEX_VALENCE || fan.iter().any(|t| t.iter().any(|&v| v != c && is_hard(c, v))) {
+        return;
+    }
+    for t in fan {
+        let k = t.iter().position(|&v| v == c).expect("in the fan");
+        let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+        if is_hard(a, b) {
+            continue;
+        }
+        let m = points.len() as u32;
+        points.push(0.5 * (points[a as usize] + points[b as usize]));
+        split_edge(triangles, a, b, m);
+    }
+}
+
+/// Splits edge (a, b) at new vertex m in every triangle holding it,
+/// keeping each triangle's orientation.
+fn split_edge(triangles: &mut Vec<[u32; 3]>, a: u32, b: u32, m: u32) {
+    let mut added = Vec::new();
+    for t in triangles.iter_mut() {
+        for k in 0..3 {
+            let (x, y, z) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            if (y, z) == (a, b) || (y, z) == (b, a) {
+                *t = [x, y, m];
+                added.push([x, m, z]);
+                break;
             }
         }
     }
-    Ok(net)
+    triangles.extend(added);
 }

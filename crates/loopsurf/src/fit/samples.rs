@@ -1,0 +1,321 @@
+//! Data between the input's vertices, where a CAD export has none.
+//!
+//! A CAD exporter puts its vertices on the true surface and nothing
+//! between them: along a cylinder's slivers the nearest data are a whole
+//! height apart, a filleted box's faces are two triangles each. Fitted to
+//! the vertices alone, the surface between them is whatever the fairness
+//! term makes it. But the vertices say more than where the surface is:
+//! their neighbours say where it is going. Along every input edge longer
+//! than the new net's spacing, this module predicts the true surface by the
+//! cubic Hermite curve between the edge's ends whose end tangents are the
+//! edge's direction projected onto the tangent planes there (as the curved
+//! PN triangles of Vlachos, Peters, Boyd & Mitchell do): exact on a
+//! straight ruling (a cylinder's or a cone's slivers, a flat face), and
+//! within O(θ⁴) of a circular arc turning by θ.
+//!
+//! **Tangent planes.** The plane at a vertex is the least-squares plane
+//! through it that best fits its neighbours in the sector of the edge
+//! (the fan between two hard edges; the whole fan on a smooth vertex; the
+//! edge's two triangles at a corner, whose tangent cone is no plane). The
+//! fit weighs each neighbour by its distance, which is what a CAD
+//! tessellation needs where a flat face meets a fillet tangentially: the
+//! long edges on the flat face, exactly in its plane, decide the plane,
+//! and the short ones on the fillet, off it by the chord tolerance only,
+//! barely tilt it. An average of facet normals would tilt it by half the
+//! fillet's angle step, and the long edges' predictions with it.
+//!
+//! **Hard edges** are predicted along the curve: the tangent at a crease
+//! vertex is that of the circle through it and its two crease neighbours,
+//! exact on circular and straight rims; at a corner or a crease's end the
+//! chord's own direction. The same circle corrects the tangent planes
+//! beside a crease ([`plane_normal`]).
+
+use crate::features::VertexKind;
+use crate::net::ControlNet;
+use crate::topology::Topology;
+use faer::linalg::solvers::SelfAdjointEigen;
+use glam::DVec3;
+
+/// Predicted points between the input's vertices, and whether each lies on
+/// a hard edge (fitted by the crease curves) or on the surface.
+pub struct Samples {
+    pub points: Vec<DVec3>,
+    pub on_feature: Vec<bool>,
+}
+
+/// The samples of every edge of `input` longer than the new net's
+/// `spacing`, about `spacing` apart along it, and of every triangle larger
+/// than an equilateral one of that edge, about as dense inside it.
+pub fn between_vertices(input: &ControlNet, spacing: f64) -> Samples {
+    let topo = input.topology();
+    let kinds = input.vertex_kinds();
+    let points = input.points();
+    let mut out = Samples {
+        points: Vec::new(),
+        on_feature: Vec::new(),
+    };
+    for (e, &[a, b]) in topo.edges().iter().enumerate() {
+        let (pa, pb) = (points[a as usize], points[b as usize]);
+        let count = ((pa.distance(pb) / spacing + 0.5).floor() as usize).saturating_sub(1);
+        if count == 0 {
+            continue;
+        }
+        let (da, db) = (
+            derivative(input, &kinds, a, b),
+            -derivative(input, &kinds, b, a),
+        );
+        for k in 1..=count {
+            let s = k as f64 / (count + 1) as f64;
+            out.points.push(hermite(pa, da, pb, db, s));
+            out.on_feature.push(input.features().is_hard_edge(e));
+        }
+    }
+    let equilateral = 3f64.sqrt() / 4.0 * spacing * spacing;
+    for &t in topo.triangles() {
+        let corners = t.map(|v| points[v as usize]);
+        let n = (crate::geometry::area(corners) / equilateral)
+            .sqrt()
+            .round() as usize;
+        if n < 3 {
+            continue;
+        }
+        let patch = CubicPatch::new(input, &kinds, t);
+        for i in 1..n - 1 {
+            for j in 1..n - i {
+                out.points
+                    .push(patch.at(i as f64 / n as f64, j as f64 / n as f64));
+                out.on_feature.push(false);
+            }
+        }
+    }
+    out
+}
+
+/// The cubic Hermite curve from `a` (derivative `da`) to `b` (derivative
+/// `db`) at parameter s in [0, 1].
+fn hermite(a: DVec3, da: DVec3, b: DVec3, db: DVec3, s: f64) -> DVec3 {
+    let (s2, s3) = (s * s, s * s * s);
+    (2.0 * s3 - 3.0 * s2 + 1.0) * a
+        + (s3 - 2.0 * s2 + s) * da
+        + (-2.0 * s3 + 3.0 * s2) * b
+        + (s3 - s2) * db
+}
+
+/// The derivative at `a` of the predicted curve of the edge to `b` (over
+/// the parameter from 0 at `a` to 1 at `b`): the edge projected onto the
+/// tangent plane at `a` (as PN triangles do), or along a hard edge the
+/// crease's tangent at `a`, as long as the edge.
+fn derivative(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> DVec3 {
+    let topo = input.topology();
+    let d = input.points()[b as usize] - input.points()[a as usize];
+    let hard = topo
+        .find_edge(a, b)
+        .is_some_and(|e| input.features().is_hard_edge(e));
+    if hard {
+        return d.length() * crease_tangent(input, kinds, a, b);
+    }
+    let n = plane_normal(topo, input, kinds, a, b);
+    d - d.dot(n) * n
+}
+
+/// The cubic Bézier triangle of a control triangle whose boundary is the
+/// three edges' predicted curves and whose centre control point is that of
+/// Vlachos et al.'s PN triangles (quadratic precision).
+struct CubicPatch {
+    corners: [DVec3; 3],
+    /// `edge[i][0]` next to corner i, `edge[i][1]` next to corner i + 1.
+    edge: [[DVec3; 2]; 3],
+    centre: DVec3,
+}
+
+impl CubicPatch {
+    fn new(input: &ControlNet, kinds: &[VertexKind], t: [u32; 3]) -> CubicPatch {
+        let corners = t.map(|v| input.points()[v as usize]);
+        let edge = [0, 1, 2].map(|i| {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            [
+                corners[i] + derivative(input, kinds, a, b) / 3.0,
+                corners[(i + 1) % 3] + derivative(input, kinds, b, a) / 3.0,
+            ]
+        });
+        let e = edge.iter().flatten().copied().sum::<DVec3>() / 6.0;
+        let v = corners.iter().copied().sum::<DVec3>() / 3.0;
+        CubicPatch {
+            corners,
+            edge,
+            centre: e + (e - v) / 2.0,
+        }
+    }
+
+    /// The point at barycentric (1 − v − w, v, w).
+    fn at(&self, v: f64, w: f64) -> DVec3 {
+        let b = [1.0 - v - w, v, w];
+        let mut p = self.centre * 6.0 * b[0] * b[1] * b[2];
+        for i in 0..3 {
+            let j = (i + 1) % 3;
+            p += self.corners[i] * b[i].powi(3);
+            p += self.edge[i][0] * 3.0 * b[i] * b[i] * b[j];
+            p += self.edge[i][1] * 3.0 * b[i] * b[j] * b[j];
+        }
+        p
+    }
+}
+
+/// The osculating circle of the crease at crease vertex `a`, through it
+/// and its two crease neighbours: its unit tangent at `a` (either way)
+/// and its curvature vector there; none where `a` is not on exactly one
+/// crease.
+fn crease_circle(input: &ControlNet, kinds: &[VertexKind], a: u32) -> Option<(DVec3, DVec3)> {
+    if kinds[a as usize] != VertexKind::Crease {
+        return None;
+    }
+    let hard = input
+        .features()
+        .hard_neighbours(input.topology(), a as usize);
+    let [n0, n2] = hard[..] else {
+        return None;
+    };
+    let points = input.points();
+    let p = points[a as usize];
+    // Inverted about `a`, the circle through the three points is a line
+    // through the images of the other two: parallel to the tangent at `a`,
+    // at 1/(2R) from it towards the centre.
+    let (i0, i2) = [n0, n2]
+        .map(|n| {
+            let d = points[n as usize] - p;
+            d / d.length_squared()
+        })
+        .into();
+    let t = (i2 - i0).try_normalize()?;
+    Some((t, 2.0 * (i0 - i0.dot(t) * t)))
+}
+
+/// The unit tangent at vertex `a` of the hard edge towards `b`, pointing
+/// towards `b`: the crease circle's, or the chord's where there is none.
+fn crease_tangent(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> DVec3 {
+    let chord = (input.points()[b as usize] - input.points()[a as usize]).normalize();
+    match crease_circle(input, kinds, a) {
+        Some((t, _)) if t.dot(chord) < 0.0 => -t,
+        Some((t, _)) => t,
+        None => chord,
+    }
+}
+
+/// The unit normal (up to sign) of the tangent plane at vertex `a` in the
+/// sector holding the edge to `b` (module doc). On a crease the plane holds
+/// the crease's tangent t, and each neighbour is first moved back along
+/// the crease's circle by its offset along t: the surface beside a rim is
+/// swept along it, to second order, so what is left of the neighbour's
+/// offset says how the plane turns about t, free of the crease's own
+/// curvature (which would tilt a plain least-squares plane by the rim's
+/// sagitta over the neighbour's distance).
+fn plane_normal(
+    topo: &Topology,
+    input: &ControlNet,
+    kinds: &[VertexKind],
+    a: u32,
+    b: u32,
+) -> DVec3 {
+    let points = input.points();
+    let p = points[a as usize];
+    let offsets = sector(topo, input, kinds, a, b)
+        .into_iter()
+        .map(|n| points[n as usize] - p);
+    match crease_circle(input, kinds, a) {
+        Some((t, curvature)) => {
+            let swept = offsets.map(|d| {
+                let s = d.dot(t);
+                d - s * t - 0.5 * s * s * curvature
+            });
+            normal_about(t, swept)
+        }
+        None => least_squares_normal(offsets),
+    }
+}
+
+/// The unit normal of the plane through the origin nearest (least squares)
+/// to `offsets`.
+fn least_squares_normal(offsets: impl Iterator<Item = DVec3>) -> DVec3 {
+    let mut m = [[0.0f64; 3]; 3];
+    for d in offsets {
+        for (i, row) in m.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x += d[i] * d[j];
+            }
+        }
+    }
+    let mat = faer::Mat::<f64>::from_fn(3, 3, |i, j| m[i][j]);
+    match SelfAdjointEigen::new(mat.as_ref(), faer::Side::Lower) {
+        // Eigenvalues ascending: the first vector is the plane's normal.
+        Ok(evd) => {
+            let u = evd.U();
+            DVec3::new(u[(0, 0)], u[(1, 0)], u[(2, 0)]).normalize_or(DVec3::ZERO)
+        }
+        Err(_) => DVec3::ZERO,
+    }
+}
+
+/// The unit normal, perpendicular to unit `axis`, of the plane holding the
+/// axis nearest (least squares) to `offsets` (taken perpendicular to it).
+fn normal_about(axis: DVec3, offsets: impl Iterator<Item = DVec3>) -> DVec3 {
+    let (e1, e2) = axis.any_orthonormal_pair();
+    let (mut c11, mut c12, mut c22) = (0.0, 0.0, 0.0);
+    for d in offsets {
+        let (x, y) = (d.dot(e1), d.dot(e2));
+        c11 += x * x;
+        c12 += x * y;
+        c22 += y * y;
+    }
+    // The offsets' major axis in the (e1, e2) plane lies in the tangent
+    // plane; the normal is perpendicular to it.
+    let major = 0.5 * (2.0 * c12).atan2(c11 - c22);
+    -major.sin() * e1 + major.cos() * e2
+}
+
+/// The neighbours of `a` in the sector of the edge to `b`: from the ring
+/// position of `b` both ways up to the first hard edge (included) or the
+/// boundary; at a corner only the two triangles beside the edge.
+fn sector(topo: &Topology, input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> Vec<u32> {
+    let ring = topo.ring(a as usize);
+    let n = ring.len();
+    let Some(j) = ring.iter().position(|&x| x == b) else {
+        return vec![b];
+    };
+    let closed = !topo.is_boundary_vertex(a as usize);
+    let step = |i: usize, forward: bool| -> Option<usize> {
+        match (forward, closed) {
+            (true, true) => Some((i + 1) % n),
+            (false, true) => Some((i + n - 1) % n),
+            (true, false) => (i + 1 < n).then_some(i + 1),
+            (false, false) => i.checked_sub(1),
+        }
+    };
+    if kinds[a as usize] == VertexKind::Corner {
+        return [step(j, false), Some(j), step(j, true)]
+            .into_iter()
+            .flatten()
+            .map(|i| ring[i])
+            .collect();
+    }
+    let is_hard = |i: usize| {
+        topo.find_edge(a, ring[i])
+            .is_some_and(|e| input.features().is_hard_edge(e))
+    };
+    let mut out = vec![b];
+    for forward in [true, false] {
+        let mut i = j;
+        while let Some(next) = step(i, forward) {
+            if next == j {
+                break;
+            }
+            out.push(ring[next]);
+            if is_hard(next) {
+                break;
+            }
+            i = next;
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
