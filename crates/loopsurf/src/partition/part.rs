@@ -88,7 +88,7 @@ impl Part {
         boundary: Vec<bool>,
         whole: [usize; 2],
     ) -> Result<Part> {
-        let bad = |what: &str| Err(Error::InvalidArgument(format!("part: {what}")));
+        let bad = |what: &str| Err(Error::InvalidArgument(what.to_string()));
         if triangles.len() != net.triangles().len() || owned.len() != triangles.len() {
             return bad("the triangle maps do not match the net's triangles");
         }
