@@ -1,8 +1,11 @@
 //! `loopsurf info`: what the control net is made of, and how far its
 //! vertices lie from the limit surface (Persson, Aftosmis & Haines's deviation figure).
+//! With `--parts K --part P`: one line on that part alone, its owned and
+//! halo triangles and the bytes its surface holds.
 
 use crate::input::Input;
-use loopsurf::{ControlNet, Error, VertexKind};
+use crate::part_options::{PartOptions, Selected};
+use loopsurf::{ControlNet, Error, Surface, VertexKind};
 use std::collections::BTreeMap;
 use std::io::Write;
 
@@ -10,10 +13,25 @@ use std::io::Write;
 pub struct Args {
     #[command(flatten)]
     input: Input,
+    #[command(flatten)]
+    part: PartOptions,
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
+    if let Some(selected) = args.part.select(&net)? {
+        let bytes = part_bytes(&selected)?;
+        let (part, k) = (&selected.part, selected.partition.num_parts());
+        return crate::write_stdout(|out| {
+            writeln!(
+                out,
+                "part {} of {k}: owned {} halo {} bytes {bytes}",
+                selected.index,
+                part.num_owned(),
+                part.num_halo()
+            )
+        });
+    }
     crate::write_stdout(|out| {
         writeln!(out, "mesh: {}", args.input.name())?;
         counts(out, &net)?;
@@ -21,6 +39,15 @@ pub fn run(args: Args) -> Result<(), Error> {
         features(out, &net)?;
         limit_deviation(out, &net)
     })
+}
+
+/// The bytes a part's surface holds once every patch and the snap index
+/// are made (one snap makes them), with its sub-net and maps.
+fn part_bytes(selected: &Selected) -> Result<usize, Error> {
+    let part = &selected.part;
+    let surface = Surface::new(part.net())?;
+    loopsurf::snap::closest_point(&surface, part.net().points()[0])?;
+    Ok(surface.memory_bytes() + part.memory_bytes())
 }
 
 /// Vertices, triangles and edges, and the vertices no triangle uses or
