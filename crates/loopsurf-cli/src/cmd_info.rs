@@ -5,7 +5,8 @@
 
 use crate::input::Input;
 use crate::part_options::{PartOptions, Selected};
-use loopsurf::{ControlNet, Error, Surface, VertexKind};
+use loopsurf::partsurface::{self, PartSurface};
+use loopsurf::{ControlNet, Error, VertexKind};
 use std::collections::BTreeMap;
 use std::io::Write;
 
@@ -20,7 +21,7 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
     if let Some(selected) = args.part.select(&net)? {
-        let bytes = part_bytes(&selected)?;
+        let bytes = part_bytes(&net, &selected)?;
         let (part, k) = (&selected.part, selected.partition.num_parts());
         return crate::write_stdout(|out| {
             writeln!(
@@ -42,12 +43,15 @@ pub fn run(args: Args) -> Result<(), Error> {
 }
 
 /// The bytes a part's surface holds once every patch and the snap index
-/// are made (one snap makes them), with its sub-net and maps.
-fn part_bytes(selected: &Selected) -> Result<usize, Error> {
-    let part = &selected.part;
-    let surface = Surface::new(part.net())?;
-    loopsurf::snap::closest_point(&surface, part.net().points()[0])?;
-    Ok(surface.memory_bytes() + part.memory_bytes())
+/// of its owned triangles are made (one snap makes them), with its
+/// sub-net and maps.
+fn part_bytes(net: &ControlNet, selected: &Selected) -> Result<usize, Error> {
+    let part = selected.part.clone();
+    let x = part.net().points()[0];
+    let bounds = partsurface::bounds(net, &selected.partition);
+    let surface = PartSurface::new(part, selected.index, bounds)?;
+    surface.closest_point(x)?;
+    Ok(surface.memory_bytes())
 }
 
 /// Vertices, triangles and edges, and the vertices no triangle uses or
