@@ -33,20 +33,20 @@ use std::collections::HashMap;
 /// its own, with global ids.
 #[derive(Debug, Clone)]
 pub struct Part {
-    net: ControlNet,
+    pub(crate) net: ControlNet,
     /// Global id of each local triangle, ascending.
-    triangles: Vec<u32>,
+    pub(crate) triangles: Vec<u32>,
     /// Global id of each local vertex, non-decreasing (a rim vertex split
     /// into several fans repeats its id).
-    vertices: Vec<u32>,
+    pub(crate) vertices: Vec<u32>,
     /// Whether each local triangle is owned (the others are the halo).
-    owned: Vec<bool>,
+    pub(crate) owned: Vec<bool>,
     /// Each local vertex's kind in the whole.
-    kinds: Vec<VertexKind>,
+    pub(crate) kinds: Vec<VertexKind>,
     /// Whether each local vertex is on the whole's boundary.
-    boundary: Vec<bool>,
+    pub(crate) boundary: Vec<bool>,
     /// The whole's vertex and triangle counts.
-    whole: [usize; 2],
+    pub(crate) whole: [usize; 2],
 }
 
 impl Part {
@@ -77,22 +77,16 @@ impl Part {
         })
     }
 
-    /// Assembles a part from its stored pieces (a part stream), checking
-    /// that the maps fit the net.
-    pub(crate) fn from_pieces(
-        net: ControlNet,
-        triangles: Vec<u32>,
-        vertices: Vec<u32>,
-        owned: Vec<bool>,
-        kinds: Vec<VertexKind>,
-        boundary: Vec<bool>,
-        whole: [usize; 2],
-    ) -> Result<Part> {
+    /// The part, its maps checked against its net (a part read from a
+    /// stream).
+    pub(crate) fn checked(self) -> Result<Part> {
         let bad = |what: &str| Err(Error::InvalidArgument(what.to_string()));
-        if triangles.len() != net.triangles().len() || owned.len() != triangles.len() {
+        let (triangles, vertices, whole) = (&self.triangles, &self.vertices, self.whole);
+        let nv = self.net.points().len();
+        if triangles.len() != self.net.triangles().len() || self.owned.len() != triangles.len() {
             return bad("the triangle maps do not match the net's triangles");
         }
-        if [vertices.len(), kinds.len(), boundary.len()] != [net.points().len(); 3] {
+        if [vertices.len(), self.kinds.len(), self.boundary.len()] != [nv; 3] {
             return bad("the vertex maps do not match the net's vertices");
         }
         if !triangles.windows(2).all(|w| w[0] < w[1])
@@ -105,18 +99,10 @@ impl Part {
         {
             return bad("global vertex ids must not descend and must lie in the whole");
         }
-        if !owned.contains(&true) {
+        if !self.owned.contains(&true) {
             return bad("no owned triangle");
         }
-        Ok(Part {
-            net,
-            triangles,
-            vertices,
-            owned,
-            kinds,
-            boundary,
-            whole,
-        })
+        Ok(self)
     }
 
     /// The sub-net: owned and halo triangles in global order.

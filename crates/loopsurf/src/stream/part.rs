@@ -99,7 +99,16 @@ pub fn part_from_bytes(bytes: &[u8]) -> Result<Part> {
     let boundary = flags(&mut r, nv).map_err(bad)?;
     let triangles: Vec<u32> = (0..nt).map(|_| r.u32()).collect();
     let owned = flags(&mut r, nt).map_err(bad)?;
-    Part::from_pieces(net, triangles, vertices, owned, kinds, boundary, whole).map_err(|e| {
+    let part = Part {
+        net,
+        triangles,
+        vertices,
+        owned,
+        kinds,
+        boundary,
+        whole,
+    };
+    part.checked().map_err(|e| {
         bad(match e {
             Error::InvalidArgument(m) => m,
             other => other.to_string(),
