@@ -87,7 +87,7 @@ fn read_net(bytes: &[u8]) -> Result<(ControlNet, SurfaceMode)> {
     let mode = *MODES
         .get(tag as usize)
         .ok_or_else(|| bad(format!("unknown surface mode {tag}")))?;
-    let net = NetBody::read(&mut r, &counts).map_err(|m| bad(m))?;
+    let net = NetBody::read(&mut r, &counts).map_err(bad)?;
     Ok((net, mode))
 }
 
