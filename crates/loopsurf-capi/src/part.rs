@@ -3,7 +3,7 @@
 //! whole net's ids, and its own stream, so that rank 0 can send each rank
 //! only its part, or every rank can build only its own.
 
-use crate::buffers::malloc_copy;
+use crate::buffers::{malloc_copy, Blocks};
 use crate::handles::ls_part;
 use crate::net::ls_net;
 use crate::status::LS_ERR_INVALID_ARGUMENT;
@@ -118,14 +118,9 @@ pub unsafe extern "C" fn ls_part_triangles(
         let owned = output(owned, "owned")?;
         let ids: Vec<i32> = part.global_triangles().iter().map(|&t| t as i32).collect();
         let flags: Vec<i32> = (0..ids.len()).map(|t| part.is_owned(t) as i32).collect();
-        let ids_out = malloc_copy(&ids)?;
-        let flags_out = match malloc_copy(&flags) {
-            Ok(a) => a,
-            Err(e) => {
-                libc::free(ids_out as *mut std::ffi::c_void);
-                return Err(e);
-            }
-        };
+        let mut blocks = Blocks::default();
+        let (ids_out, flags_out) = (blocks.copy(&ids)?, blocks.copy(&flags)?);
+        blocks.hand_over();
         (*outs.0, *outs.1, *owned) = (ids.len(), ids_out, flags_out);
         Ok(())
     })
