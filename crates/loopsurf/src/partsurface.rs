@@ -136,7 +136,10 @@ impl PartSurface {
         snap::check_point(p)?;
         let index = self
             .snap_index
-            .get_or_init(|| SnapIndex::over(&self.surface, Some(&self.owned)));
+            .get_or_init(|| {
+                let whole = self.part.whole_size()[1];
+                SnapIndex::over(&self.surface, Some(&self.owned), whole)
+            });
         let owned = |t: usize| self.owned[t];
         let tolerance = snap::DEFAULT_TOLERANCE;
         let snap = snap::search_in(&self.surface, index, p, None, tolerance, &owned);

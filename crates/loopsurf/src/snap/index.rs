@@ -110,17 +110,20 @@ impl Level {
 
 impl SnapIndex {
     pub(crate) fn new(surface: &Surface) -> SnapIndex {
-        Self::over(surface, None)
+        Self::over(surface, None, surface.net().triangles().len())
     }
 
     /// The index of the patches of the triangles `only` marks (all when
-    /// `None`): a part's owned triangles, searched without its halo.
-    pub(crate) fn over(surface: &Surface, only: Option<&[bool]>) -> SnapIndex {
+    /// `None`): a part's owned triangles, searched without its halo. Its
+    /// cells are cut as for a net of `size` triangles: a part's as its
+    /// whole's, so that K parts hold about what the whole would (a part
+    /// cut for its own size would take finer cells than the whole).
+    pub(crate) fn over(surface: &Surface, only: Option<&[bool]>, size: usize) -> SnapIndex {
         let net = surface.net();
         let nt = net.triangles().len();
         // Every cell below reads its patches.
         surface.evaluator().make_all();
-        let (level, deep) = cutting(nt);
+        let (level, deep) = cutting(size);
         // The net refined `deep`, `deep` + 1 and `deep` + 2 times.
         let mut cut: Option<Level> = None;
         for _ in 0..deep {
