@@ -61,29 +61,9 @@ static uint8_t* scatter_parts(ls_net* net, int size, size_t* own_len) {
     return own;
 }
 
-int main(int argc, char** argv) {
-    MPI_Init(&argc, &argv);
-    int rank, size;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    int failed = 0;
-
-    ls_net* whole_net = NULL;
-    uint8_t* stream = NULL;
-    size_t len = 0;
-    if (rank == 0) {
-        if (argc < 2 || ls_net_load(argv[1], &whole_net) != LS_OK || ls_net_tag_by_angle(whole_net, 30, NULL) != LS_OK)
-            fail("loading", 0);
-        stream = scatter_parts(whole_net, size, &len);
-    } else {
-        unsigned long long n = 0;
-        MPI_Recv(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        stream = malloc(n ? n : 1);
-        transfer(stream, n, 0, 0);
-        len = (size_t)n;
-    }
-
-    /* This rank's part alone: its surface, its owned triangles. */
+/* This rank's part alone: its surface evaluates its owned triangles at
+ * PARAMS; writes their global ids and records, returns how many. */
+static int evaluate_own(const uint8_t* stream, size_t len, int rank, int** ids, double** records, int* failed) {
     ls_part* part = NULL;
     ls_net* net = NULL;
     ls_surface* surface = NULL;
@@ -96,23 +76,57 @@ int main(int argc, char** argv) {
         ls_part_counts(part, &owned_count, &halo, &nverts) != LS_OK)
         fail("reading the part", rank);
     printf("rank %d: part of %zu owned and %zu halo triangles, stream of %zu bytes\n", rank, owned_count, halo, len);
-
     int mine = 0;
-    int* ids = malloc((owned_count ? owned_count : 1) * sizeof *ids);
-    double* records = malloc((owned_count ? owned_count : 1) * NP * 18 * sizeof *records);
+    *ids = malloc((owned_count ? owned_count : 1) * sizeof **ids);
+    *records = malloc((owned_count ? owned_count : 1) * NP * 18 * sizeof **records);
     for (size_t t = 0; t < ntris; t++) {
         if (!owned[t]) continue;
         for (int k = 0; k < NP; k++)
-            failed |= ls_evaluate(surface, (int)t, PARAMS[k][0], PARAMS[k][1], records + (size_t)(mine * NP + k) * 18) != LS_OK;
-        ids[mine++] = global[t];
+            *failed |= ls_evaluate(surface, (int)t, PARAMS[k][0], PARAMS[k][1], *records + (size_t)(mine * NP + k) * 18) != LS_OK;
+        (*ids)[mine++] = global[t];
     }
-    failed |= (size_t)mine != owned_count;
+    *failed |= (size_t)mine != owned_count;
+    ls_free_array(global);
+    ls_free_array(owned);
+    ls_surface_free(surface);
+    ls_net_free(net);
+    ls_part_free(part);
+    return mine;
+}
 
-    /* Gather the global ids and the records on rank 0. */
+/* Rank 0: every triangle gathered once, each record the whole surface's. */
+static int check_gathered(ls_net* whole_net, int total, const int* ids, const double* all) {
+    int failed = 0;
+    ls_surface* whole = NULL;
+    size_t n = 0;
+    if (ls_surface_build(whole_net, &whole) != LS_OK || ls_surface_num_triangles(whole, &n) != LS_OK) fail("whole", 0);
+    failed |= (size_t)total != n;
+    char* seen = calloc(n, 1);
+    double serial[18];
+    for (int i = 0; i < total; i++) {
+        int g = ids[i];
+        if (g < 0 || (size_t)g >= n || seen[g]) {
+            failed = 1;
+            continue;
+        }
+        seen[g] = 1;
+        for (int k = 0; k < NP; k++) {
+            failed |= ls_evaluate(whole, g, PARAMS[k][0], PARAMS[k][1], serial) != LS_OK;
+            failed |= memcmp(serial, all + (size_t)(i * NP + k) * 18, sizeof serial) != 0;
+        }
+    }
+    printf("MPI parts: %d triangles, %d evaluations %s\n", total, total * NP,
+           failed ? "DIFFER" : "bit-identical to the whole surface");
+    free(seen);
+    ls_surface_free(whole);
+    return failed;
+}
+
+/* Gathers every rank's ids and records on rank 0 and checks them there. */
+static int gather_and_check(ls_net* whole_net, int rank, int size, int mine, int* ids, double* records) {
     int* counts = rank == 0 ? malloc(size * sizeof *counts) : NULL;
     MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    int total = 0, *displs = NULL, *rcounts = NULL, *rdispls = NULL;
-    int* all_ids = NULL;
+    int total = 0, *displs = NULL, *rcounts = NULL, *rdispls = NULL, *all_ids = NULL;
     double* all = NULL;
     if (rank == 0) {
         displs = malloc(size * sizeof *displs);
@@ -129,46 +143,47 @@ int main(int argc, char** argv) {
     }
     MPI_Gatherv(ids, mine, MPI_INT, all_ids, counts, displs, MPI_INT, 0, MPI_COMM_WORLD);
     MPI_Gatherv(records, mine * NP * 18, MPI_DOUBLE, all, rcounts, rdispls, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    int failed = rank == 0 ? check_gathered(whole_net, total, all_ids, all) : 0;
+    free(all);
+    free(all_ids);
+    free(displs);
+    free(rcounts);
+    free(rdispls);
+    free(counts);
+    return failed;
+}
 
+int main(int argc, char** argv) {
+    MPI_Init(&argc, &argv);
+    int rank, size;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    ls_net* whole_net = NULL;
+    uint8_t* stream = NULL;
+    size_t len = 0;
     if (rank == 0) {
-        ls_surface* whole = NULL;
-        size_t n = 0;
-        if (ls_surface_build(whole_net, &whole) != LS_OK || ls_surface_num_triangles(whole, &n) != LS_OK) fail("whole", 0);
-        failed |= (size_t)total != n;
-        char* seen = calloc(n, 1);
-        double serial[18];
-        for (int i = 0; i < total; i++) {
-            int g = all_ids[i];
-            failed |= g < 0 || (size_t)g >= n || seen[g];
-            if (g < 0 || (size_t)g >= n) continue;
-            seen[g] = 1;
-            for (int k = 0; k < NP; k++) {
-                failed |= ls_evaluate(whole, g, PARAMS[k][0], PARAMS[k][1], serial) != LS_OK;
-                failed |= memcmp(serial, all + (size_t)(i * NP + k) * 18, sizeof serial) != 0;
-            }
-        }
-        printf("MPI parts: %d ranks, %d triangles, %d evaluations %s\n", size, total, total * NP,
-               failed ? "DIFFER" : "bit-identical to the whole surface");
-        free(seen);
-        ls_surface_free(whole);
-        ls_net_free(whole_net);
-        free(all);
-        free(all_ids);
-        free(displs);
-        free(rcounts);
-        free(rdispls);
-        free(counts);
+        if (argc < 2 || ls_net_load(argv[1], &whole_net) != LS_OK || ls_net_tag_by_angle(whole_net, 30, NULL) != LS_OK)
+            fail("loading", 0);
+        stream = scatter_parts(whole_net, size, &len);
+    } else {
+        unsigned long long n = 0;
+        MPI_Recv(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        stream = malloc(n ? n : 1);
+        transfer(stream, n, 0, 0);
+        len = (size_t)n;
+    }
+    int failed = 0, *ids = NULL;
+    double* records = NULL;
+    int mine = evaluate_own(stream, len, rank, &ids, &records, &failed);
+    failed |= gather_and_check(whole_net, rank, size, mine, ids, records);
+    if (rank == 0) {
         ls_free_bytes(stream, len);
+        ls_net_free(whole_net);
     } else {
         free(stream);
     }
-    ls_free_array(global);
-    ls_free_array(owned);
     free(ids);
     free(records);
-    ls_surface_free(surface);
-    ls_net_free(net);
-    ls_part_free(part);
     int any = 0;
     MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
     MPI_Finalize();
