@@ -94,6 +94,12 @@ module loopsurf
         integer(c_int) :: parts, seed
     end type
 
+    !> Options of ls_net_part: the number of parts, which part, METIS's seed.
+    type, bind(C) :: ls_part_options
+        integer(c_size_t) :: struct_size
+        integer(c_int) :: parts, part, seed
+    end type
+
     !> Options of ls_mesh_curve, curving another tool's mesh.
     type, bind(C) :: ls_mesh_curve_options
         integer(c_size_t) :: struct_size
@@ -181,6 +187,61 @@ module loopsurf
             type(ls_partition_options), intent(in) :: options
             integer(c_size_t), intent(out) :: ntris, cut
             type(c_ptr), intent(out) :: part
+        end function
+        integer(c_int) function ls_part_options_default(options) bind(C, name="ls_part_options_default")
+            import :: c_int, ls_part_options
+            type(ls_part_options), intent(out) :: options
+        end function
+        ! One part of the net with its halo, freed with ls_part_free.
+        integer(c_int) function ls_net_part(net, options, out) bind(C, name="ls_net_part")
+            import :: c_int, c_ptr, ls_part_options
+            type(c_ptr), value :: net
+            type(ls_part_options), intent(in) :: options
+            type(c_ptr), intent(out) :: out
+        end function
+        subroutine ls_part_free(part) bind(C, name="ls_part_free")
+            import :: c_ptr
+            type(c_ptr), value :: part
+        end subroutine
+        integer(c_int) function ls_part_counts(part, owned, halo, vertices) bind(C, name="ls_part_counts")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: part
+            integer(c_size_t), intent(out) :: owned, halo, vertices
+        end function
+        ! Each local triangle's 0-based id in the whole net and whether it is
+        ! owned (1) or halo (0): int32 arrays freed with ls_free_array.
+        integer(c_int) function ls_part_triangles(part, ntris, global, owned) &
+                bind(C, name="ls_part_triangles")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: part
+            integer(c_size_t), intent(out) :: ntris
+            type(c_ptr), intent(out) :: global, owned
+        end function
+        ! Each local vertex's 0-based id in the whole net (int32), freed with
+        ! ls_free_array.
+        integer(c_int) function ls_part_vertices(part, nverts, global) bind(C, name="ls_part_vertices")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: part
+            integer(c_size_t), intent(out) :: nverts
+            type(c_ptr), intent(out) :: global
+        end function
+        ! A copy of the part's net, freed with ls_net_free.
+        integer(c_int) function ls_part_net(part, out) bind(C, name="ls_part_net")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: part
+            type(c_ptr), intent(out) :: out
+        end function
+        integer(c_int) function ls_part_save(part, bytes, n) bind(C, name="ls_part_save")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: part
+            type(c_ptr), intent(out) :: bytes
+            integer(c_size_t), intent(out) :: n
+        end function
+        integer(c_int) function ls_part_load(bytes, n, out) bind(C, name="ls_part_load")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: bytes
+            integer(c_size_t), value :: n
+            type(c_ptr), intent(out) :: out
         end function
         integer(c_int) function ls_fit_options_default(options) bind(C, name="ls_fit_options_default")
             import :: c_int, ls_fit_options

@@ -113,6 +113,35 @@ program test_loopsurf
         call check(index(loopsurf_last_error(), "K = 9") > 0, "partition: refusal names K")
         call ls_free_array(part_c)
     end block
+    ! One part of four, its maps and its stream.
+    block
+        type(ls_part_options) :: qo
+        type(c_ptr) :: part, back, sub, global_c, owned_c, bytes
+        integer(c_int32_t), pointer :: global(:), owned(:)
+        integer(c_size_t) :: n_owned, n_halo, n_verts, n_tris, n_bytes
+        call check(ls_part_options_default(qo) == LS_OK .and. qo%struct_size == c_sizeof(qo) &
+                   .and. qo%parts == 1 .and. qo%part == 0, "part options")
+        qo%parts = 4
+        qo%part = 2
+        call check(ls_net_part(net, qo, part) == LS_OK, "part")
+        call check(ls_part_counts(part, n_owned, n_halo, n_verts) == LS_OK .and. n_owned == 2, "part counts")
+        call check(ls_part_triangles(part, n_tris, global_c, owned_c) == LS_OK &
+                   .and. n_tris == n_owned + n_halo, "part triangles")
+        call c_f_pointer(global_c, global, [n_tris])
+        call c_f_pointer(owned_c, owned, [n_tris])
+        call check(count(owned == 1) == 2 .and. all(global >= 0 .and. global < 8), "part maps")
+        call check(ls_part_net(part, sub) == LS_OK, "part net")
+        call check(ls_part_save(part, bytes, n_bytes) == LS_OK, "part save")
+        call check(ls_part_load(bytes, n_bytes, back) == LS_OK, "part load")
+        call check(ls_part_load(bytes, n_bytes - 1, back) == LS_ERR_BAD_STREAM, "part load: truncated")
+        qo%part = 4
+        call check(ls_net_part(net, qo, back) == LS_ERR_INVALID_ARGUMENT, "part 4 of 4")
+        call ls_free_bytes(bytes, n_bytes)
+        call ls_free_array(global_c)
+        call ls_free_array(owned_c)
+        call ls_net_free(sub)
+        call ls_part_free(part)
+    end block
     ! Mesher, uniform 3 on the octahedron: 8 * 9 triangles, closed.
     block
         type(ls_mesh_options) :: mo

@@ -29,8 +29,9 @@ extern "C" {
  *
  * Every function returning int returns LS_OK (0) or a negative LS_ERR_*
  * code and then sets the thread-local message ls_last_error() returns. The
- * opaque handles: a net is prepared, frozen into a surface, and meshes on
- * the surface are handed over as ls_trimesh.
+ * opaque handles: a net is prepared, frozen into a surface, a part of a
+ * partitioned net is a net of its own, and meshes on the surface are
+ * handed over as ls_trimesh.
  * ========================================================================== */
 
 // Success.
@@ -82,6 +83,10 @@ extern "C" {
 // A control net being prepared: load or build it, tag its hard features,
 // then freeze it into an `ls_surface`.
 typedef struct ls_net ls_net;
+
+// One part of a partitioned net (`ls_net_part`, `ls_part_load`): its
+// triangles and their halo as a net of its own, with the whole's ids.
+typedef struct ls_part ls_part;
 
 // An immutable limit surface, safe to query from many threads at once.
 typedef struct ls_surface ls_surface;
@@ -152,6 +157,19 @@ typedef struct {
   // Default 1.
   int seed;
 } ls_partition_options;
+
+// Options of `ls_net_part`: fill with `ls_part_options_default`, then
+// change what you need.
+typedef struct {
+  // `sizeof(ls_part_options)` as the caller was compiled with.
+  size_t struct_size;
+  // The number of parts K, 1 to the number of triangles. Default 1.
+  int parts;
+  // Which part, 0 to K − 1. Default 0.
+  int part;
+  // METIS's random seed, as in `ls_partition_options`. Default 1.
+  int seed;
+} ls_part_options;
 
 // Options of `ls_net_fit`: fill with `ls_fit_options_default`, then change
 // what you need.
@@ -251,6 +269,52 @@ int ls_net_partition(const ls_net *net,
                      size_t *ntris,
                      int32_t **part,
                      size_t *cut);
+
+// Writes the default options of `ls_net_part` into `options`.
+int ls_part_options_default(ls_part_options *options);
+
+// Partitions the net as `ls_net_partition` does (`options->parts`,
+// `options->seed`) and writes part `options->part` as a new `ls_part`,
+// to be released with `ls_part_free`. A surface built on its net
+// (`ls_part_net`, `ls_surface_build`) evaluates every owned triangle bit
+// for bit as the whole net's surface does. K or the part out of range is
+// `LS_ERR_INVALID_ARGUMENT`, and nothing is written.
+int ls_net_part(const ls_net *net, const ls_part_options *options, ls_part **out);
+
+// Frees a part (NULL is ignored).
+void ls_part_free(ls_part *part);
+
+// Writes the part's owned and halo triangle counts and its vertex count
+// (its net's; a rim vertex the halo touches from two sides counts once
+// per side).
+int ls_part_counts(const ls_part *part, size_t *owned, size_t *halo, size_t *vertices);
+
+// Writes the part's net's triangle count, a new array `global` (each
+// local triangle's id in the whole net, ascending) and a new array
+// `owned` (1 for an owned triangle, 0 for the halo), both to be released
+// with `ls_free_array`.
+int ls_part_triangles(const ls_part *part, size_t *ntris, int32_t **global, int32_t **owned);
+
+// Writes the part's net's vertex count and a new array `global`, each
+// local vertex's id in the whole net (non-decreasing: a rim vertex split
+// into two fans repeats its id), to be released with `ls_free_array`.
+int ls_part_vertices(const ls_part *part, size_t *nverts, int32_t **global);
+
+// Writes a new net, a copy of the part's (owned and halo triangles in
+// the whole's order, local ids), to be released with `ls_net_free`;
+// freeze it with `ls_surface_build`.
+int ls_part_net(const ls_part *part, ls_net **out);
+
+// The part as a versioned, checksummed byte stream (64-bit counts):
+// writes a new buffer and its length, to be released with
+// `ls_free_bytes`. A stream over 2 GiB is sent in pieces of at most
+// `INT_MAX` bytes.
+int ls_part_save(const ls_part *part, uint8_t **bytes, size_t *n);
+
+// Rebuilds a part from `n` bytes written by `ls_part_save`. Truncated,
+// damaged or foreign bytes give LS_ERR_BAD_STREAM, and nothing is
+// written.
+int ls_part_load(const uint8_t *bytes, size_t n, ls_part **out);
 
 // Writes the default options of `ls_net_fit` into `options`.
 int ls_fit_options_default(ls_fit_options *options);

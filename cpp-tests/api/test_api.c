@@ -1382,6 +1382,98 @@ static void test_partition(const char* data_dir) {
     ls_net_free(net);
 }
 
+/* ls_net_part: a part's maps agree with ls_net_partition, its surface
+   evaluates its owned triangles as the whole's, its stream round-trips,
+   and bad requests and damaged streams write nothing. */
+static void test_part(const char* data_dir) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/pig.off", data_dir);
+    ls_net* net = NULL;
+    EXPECT(ls_net_load(path, &net), LS_OK);
+    EXPECT(ls_net_tag_by_angle(net, 40, NULL), LS_OK);
+    ls_surface* whole = NULL;
+    EXPECT(ls_surface_build(net, &whole), LS_OK);
+    ls_partition_options po;
+    EXPECT(ls_partition_options_default(&po), LS_OK);
+    po.parts = 5;
+    size_t nt = 0, cut = 0;
+    int32_t* owner = NULL;
+    EXPECT(ls_net_partition(net, &po, &nt, &owner, &cut), LS_OK);
+
+    ls_part_options o;
+    memset(&o, 0xff, sizeof o);
+    EXPECT(ls_part_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.parts == 1 && o.part == 0 && o.seed == 1);
+    o.parts = 5;
+    o.part = 3;
+    ls_part* part = NULL;
+    EXPECT(ls_net_part(net, &o, &part), LS_OK);
+    size_t owned_n = 0, halo = 0, nv = 0, ntris = 0, nverts = 0;
+    EXPECT(ls_part_counts(part, &owned_n, &halo, &nv), LS_OK);
+    int32_t *global = NULL, *owned = NULL, *gverts = NULL;
+    EXPECT(ls_part_triangles(part, &ntris, &global, &owned), LS_OK);
+    EXPECT(ls_part_vertices(part, &nverts, &gverts), LS_OK);
+    CHECK(ntris == owned_n + halo && nverts == nv && halo > 0);
+    size_t mine = 0;
+    for (size_t t = 0; t < nt; t++) mine += owner[t] == 3;
+    CHECK(mine == owned_n);
+    ls_net* sub = NULL;
+    ls_surface* surface = NULL;
+    EXPECT(ls_part_net(part, &sub), LS_OK);
+    EXPECT(ls_surface_build(sub, &surface), LS_OK);
+    for (size_t t = 0; t < ntris; t++) {
+        CHECK(owner[global[t]] == 3 ? owned[t] == 1 : owned[t] == 0);
+        if (!owned[t]) continue;
+        double a[18], b[18];
+        EXPECT(ls_evaluate(surface, (int32_t)t, 0.2, 0.3, a), LS_OK);
+        EXPECT(ls_evaluate(whole, global[t], 0.2, 0.3, b), LS_OK);
+        CHECK(memcmp(a, b, sizeof a) == 0);
+    }
+
+    /* The stream round-trips; a damaged one writes nothing. */
+    uint8_t* bytes = NULL;
+    size_t len = 0;
+    EXPECT(ls_part_save(part, &bytes, &len), LS_OK);
+    ls_part* back = NULL;
+    EXPECT(ls_part_load(bytes, len, &back), LS_OK);
+    uint8_t* again = NULL;
+    size_t len2 = 0;
+    EXPECT(ls_part_save(back, &again, &len2), LS_OK);
+    CHECK(len2 == len && memcmp(bytes, again, len) == 0);
+    ls_free_bytes(again, len2);
+    ls_part_free(back);
+    ls_part* untouched = (ls_part*)&o;
+    ls_part* out = untouched;
+    bytes[len / 2] ^= 0x5a;
+    EXPECT(ls_part_load(bytes, len, &out), LS_ERR_BAD_STREAM);
+    CHECK(strstr(ls_last_error(), "part stream") != NULL && out == untouched);
+    EXPECT(ls_part_load(bytes, len / 3, &out), LS_ERR_BAD_STREAM);
+    CHECK(out == untouched);
+    ls_free_bytes(bytes, len);
+
+    /* Bad K or part: one message, nothing written. */
+    int bad[][2] = {{0, 0}, {(int)nt + 1, 0}, {5, 5}, {5, -1}};
+    for (int i = 0; i < 4; i++) {
+        o.parts = bad[i][0];
+        o.part = bad[i][1];
+        EXPECT(ls_net_part(net, &o, &out), LS_ERR_INVALID_ARGUMENT);
+        CHECK(strncmp(ls_last_error(), "ls_net_part:", 12) == 0 && out == untouched);
+    }
+    EXPECT(ls_net_part(NULL, &o, &out), LS_ERR_NULL_POINTER);
+    EXPECT(ls_part_counts(NULL, &owned_n, &halo, &nv), LS_ERR_NULL_POINTER);
+    EXPECT(ls_part_options_default(NULL), LS_ERR_NULL_POINTER);
+
+    ls_free_array(global);
+    ls_free_array(owned);
+    ls_free_array(gverts);
+    ls_free_array(owner);
+    ls_surface_free(surface);
+    ls_surface_free(whole);
+    ls_net_free(sub);
+    ls_part_free(part);
+    ls_net_free(net);
+}
+
 /* ls_net_fit: a new net whose limit passes within the tolerance of every
  * vertex; the defaults as documented; refusals name their field and leave
  * the output untouched. */
@@ -1437,6 +1529,7 @@ int main(int argc, char** argv) {
     test_nets(data_dir);
     test_repairs(data_dir);
     test_partition(data_dir);
+    test_part(data_dir);
     test_queries();
     test_refine();
     test_mesh();

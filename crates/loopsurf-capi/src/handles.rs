@@ -13,6 +13,10 @@ pub struct ls_net(pub(crate) ControlNet);
 /// An immutable limit surface, safe to query from many threads at once.
 pub struct ls_surface(pub(crate) Surface);
 
+/// One part of a partitioned net (`ls_net_part`, `ls_part_load`): its
+/// triangles and their halo as a net of its own, with the whole's ids.
+pub struct ls_part(pub(crate) loopsurf::partition::Part);
+
 /// A mesh on the surface, made by `ls_mesh`, `ls_remesh`, `ls_adapt` or
 /// `ls_mesh_curve`; immutable, and safe to read from many threads at once.
 pub struct ls_trimesh {

@@ -33,6 +33,7 @@ pub mod mesh_curve;
 pub mod mesh_labels;
 pub mod model;
 pub mod net;
+pub mod part;
 pub mod partition;
 pub mod project;
 pub mod refine;

@@ -1,7 +1,11 @@
 //! `loopsurf info`: what the control net is made of, and how far its
 //! vertices lie from the limit surface (Persson, Aftosmis & Haines's deviation figure).
+//! With `--parts K --part P`: one line on that part alone, its owned and
+//! halo triangles and the bytes its surface holds.
 
 use crate::input::Input;
+use crate::part_options::{PartOptions, Selected};
+use loopsurf::partsurface::{self, PartSurface};
 use loopsurf::{ControlNet, Error, VertexKind};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -10,10 +14,25 @@ use std::io::Write;
 pub struct Args {
     #[command(flatten)]
     input: Input,
+    #[command(flatten)]
+    part: PartOptions,
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
     let net = args.input.load()?;
+    if let Some(selected) = args.part.select(&net)? {
+        let bytes = part_bytes(&net, &selected)?;
+        let (part, k) = (&selected.part, selected.partition.num_parts());
+        return crate::write_stdout(|out| {
+            writeln!(
+                out,
+                "part {} of {k}: owned {} halo {} bytes {bytes}",
+                selected.index,
+                part.num_owned(),
+                part.num_halo()
+            )
+        });
+    }
     crate::write_stdout(|out| {
         writeln!(out, "mesh: {}", args.input.name())?;
         counts(out, &net)?;
@@ -21,6 +40,18 @@ pub fn run(args: Args) -> Result<(), Error> {
         features(out, &net)?;
         limit_deviation(out, &net)
     })
+}
+
+/// The bytes a part's surface holds once every patch and the snap index
+/// of its owned triangles are made (one snap makes them), with its
+/// sub-net and maps.
+fn part_bytes(net: &ControlNet, selected: &Selected) -> Result<usize, Error> {
+    let part = selected.part.clone();
+    let x = part.net().points()[0];
+    let bounds = partsurface::bounds(net, &selected.partition);
+    let surface = PartSurface::new(part, selected.index, bounds)?;
+    surface.closest_point(x)?;
+    Ok(surface.memory_bytes())
 }
 
 /// Vertices, triangles and edges, and the vertices no triangle uses or

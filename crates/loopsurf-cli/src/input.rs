@@ -257,6 +257,18 @@ impl SurfaceOptions {
         warn_of_wiggles(net, &surface, name)?;
         Ok(surface)
     }
+
+    /// The surface of a part's sub-net: approximating or displaced, which
+    /// are decided triangle by triangle; solving and fitting change every
+    /// control point from the whole net, so a part alone cannot give them.
+    pub fn build_part(&self, net: &ControlNet) -> Result<Surface, Error> {
+        if self.fit.fit || matches!(self.interpolate, Some(Interpolate::Solve)) {
+            return Err(Error::InvalidArgument(
+                "--fit and --interpolate solve change every control point from the whole net: not available with --parts".into(),
+            ));
+        }
+        self.build(net)
+    }
 }
 
 /// Says on stderr, with what was measured, where an interpolating surface

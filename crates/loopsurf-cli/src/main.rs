@@ -15,6 +15,7 @@ mod cmd_snap;
 mod cmd_topology;
 mod curved_output;
 mod input;
+mod part_options;
 mod queries;
 
 use clap::{Parser, Subcommand};

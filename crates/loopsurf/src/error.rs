@@ -100,10 +100,12 @@ pub enum Error {
     /// or corner vertex).
     #[error("no tangent plane at vertex {vertex} ({kind} vertex) of the refined net")]
     NoTangentPlane { vertex: u32, kind: &'static str },
-    /// A surface stream ([`crate::stream::from_bytes`]) that is truncated,
-    /// damaged, of another format version, or describes an invalid net.
-    #[error("surface stream: {message}")]
-    Stream { message: String },
+    /// A surface or part stream ([`crate::stream::from_bytes`],
+    /// [`crate::stream::part_from_bytes`]) that is truncated, damaged, of
+    /// another format version, or describes an invalid net; `what` says
+    /// which ("surface" or "part").
+    #[error("{what} stream: {message}")]
+    Stream { what: &'static str, message: String },
     /// A caller-supplied argument that makes no sense (unknown edge, bad level count, ...).
     #[error("{0}")]
     InvalidArgument(String),

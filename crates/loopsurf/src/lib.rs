@@ -23,10 +23,12 @@
 //! 5. The surface: the crate-private `eval` (patches and special-vertex
 //!    eigenstructure) → [`surface`] (exact evaluation at any triangle and
 //!    parameters).
-//! 6. On the surface: [`stream`] (a surface as bytes), [`folds`] (where the
-//!    geometry folds back on itself), [`snap`] (certified closest points)
-//!    → [`curve`] (the model's curves in space, their length and
-//!    projection), and [`cad`] (CAD-like tessellations of analytic shapes
+//! 6. On the surface: [`stream`] (a surface or a part as bytes), [`folds`]
+//!    (where the geometry folds back on itself), [`snap`] (certified
+//!    closest points) → [`curve`] (the model's curves in space, their
+//!    length and projection) and [`partsurface`] (a part's surface:
+//!    walks and closest points that say when the answer may lie in
+//!    another part), and [`cad`] (CAD-like tessellations of analytic shapes
 //!    with their exact surfaces, to measure a surrogate against the truth).
 //! 7. Meshes: [`mesh`] (the chart mesher) → [`remesh`] (the quality
 //!    remesher that starts from it), [`adapt`] (adaptive Loop subdivision,
@@ -60,6 +62,7 @@ pub mod model;
 pub mod net;
 pub mod parameters;
 pub mod partition;
+pub mod partsurface;
 pub mod refine;
 pub mod remesh;
 pub mod repair;

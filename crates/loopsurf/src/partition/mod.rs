@@ -32,7 +32,10 @@ use crate::net::ControlNet;
 use crate::topology::{Topology, NONE};
 use std::sync::Mutex;
 
+mod part;
 mod rebalance;
+
+pub use part::Part;
 
 /// Largest part allowed, relative to the mean part.
 pub const MAX_IMBALANCE: f64 = 1.05;
@@ -92,6 +95,26 @@ pub fn partition_with(net: &ControlNet, k: usize, opts: &PartitionOptions) -> Re
         metis_parts(topo, k, opts.seed)?
     };
     Ok(Partition::from_parts(topo, part, k))
+}
+
+/// Part `p` of `partition` as a net of its own ([`Part`]): its triangles
+/// and their halo, with global ids.
+pub fn part(net: &ControlNet, partition: &Partition, p: usize) -> Result<Part> {
+    let k = partition.num_parts();
+    if p >= k {
+        return Err(Error::InvalidArgument(format!(
+            "part {p}: out of range (the partition has K = {k} parts, 0 to {})",
+            k - 1
+        )));
+    }
+    if partition.parts().len() != net.triangles().len() {
+        return Err(Error::InvalidArgument(format!(
+            "the partition covers {} triangles, the net has {}",
+            partition.parts().len(),
+            net.triangles().len()
+        )));
+    }
+    Part::new(net, partition.triangles(p))
 }
 
 /// The most triangles a part may hold: 5 % over the mean, or the fewest

@@ -110,11 +110,20 @@ impl Level {
 
 impl SnapIndex {
     pub(crate) fn new(surface: &Surface) -> SnapIndex {
+        Self::over(surface, None, surface.net().triangles().len())
+    }
+
+    /// The index of the patches of the triangles `only` marks (all when
+    /// `None`): a part's owned triangles, searched without its halo. Its
+    /// cells are cut as for a net of `size` triangles: a part's as its
+    /// whole's, so that K parts hold about what the whole would (a part
+    /// cut for its own size would take finer cells than the whole).
+    pub(crate) fn over(surface: &Surface, only: Option<&[bool]>, size: usize) -> SnapIndex {
         let net = surface.net();
         let nt = net.triangles().len();
         // Every cell below reads its patches.
         surface.evaluator().make_all();
-        let (level, deep) = cutting(nt);
+        let (level, deep) = cutting(size);
         // The net refined `deep`, `deep` + 1 and `deep` + 2 times.
         let mut cut: Option<Level> = None;
         for _ in 0..deep {
@@ -166,8 +175,9 @@ impl SnapIndex {
                 (lo + dlo - pad, hi + dhi + pad)
             })
             .collect();
+        let patches = (0..nt as u32).filter(|&t| only.map_or(true, |o| o[t as usize]));
         SnapIndex {
-            nodes: hierarchy(&boxes),
+            nodes: hierarchy(&boxes, patches.collect()),
             cells,
             level_start,
             level,
@@ -206,13 +216,14 @@ fn magnitude(points: &[DVec3]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// A binary hierarchy of the patches' boxes, split at the median of the
-/// box centres along the widest extent of the centres, one patch a leaf.
+/// A binary hierarchy of the boxes of `patches` (at least one), split at
+/// the median of the box centres along the widest extent of the centres,
+/// one patch a leaf.
 /// Hand-rolled rather than an R-tree crate's: the search keeps tree nodes
 /// and the cells below the leaves in one heap, which an R-tree's own
 /// nearest-neighbour iterator cannot (with `rstar` feeding the cells, the
 /// pig's random points ran at 47k/s; with one heap, 88k/s).
-fn hierarchy(boxes: &[(DVec3, DVec3)]) -> Vec<BoxNode> {
+fn hierarchy(boxes: &[(DVec3, DVec3)], mut patches: Vec<u32>) -> Vec<BoxNode> {
     fn build(boxes: &[(DVec3, DVec3)], patches: &mut [u32], nodes: &mut Vec<BoxNode>) -> u32 {
         let (lo, hi) = patches
             .iter()
@@ -250,8 +261,7 @@ fn hierarchy(boxes: &[(DVec3, DVec3)]) -> Vec<BoxNode> {
         }
         at as u32
     }
-    let mut patches: Vec<u32> = (0..boxes.len() as u32).collect();
-    let mut nodes = Vec::with_capacity(2 * boxes.len());
+    let mut nodes = Vec::with_capacity(2 * patches.len());
     build(boxes, &mut patches, &mut nodes);
     nodes
 }

@@ -146,17 +146,38 @@ pub(crate) fn descend_walking(
     w: f64,
     in_face: bool,
 ) -> (Snap, bool) {
+    if !in_face {
+        return descend_confined(surface, p, tri, v, w, &|_| true);
+    }
     // Only a walk kept in its face needs the model (built on first use).
-    let faces = in_face.then(|| surface.model().face_of_triangle());
-    let face = faces.map(|f| f[tri]);
+    let faces = surface.model().face_of_triangle();
+    let face = faces[tri];
+    descend_confined(surface, p, tri, v, w, &|t| faces[t] == face)
+}
+
+/// Which triangles a walk may enter.
+pub(crate) type Allowed<'a> = dyn Fn(usize) -> bool + 'a;
+
+/// [`descend`] over the triangles `allowed` admits (`tri` among them):
+/// an edge into any other is walked like a boundary, the solve converging
+/// on it, and the walk ends where it would go on into one. Every triangle
+/// the walk would enter or carry a step into is asked first.
+pub(crate) fn descend_confined(
+    surface: &Surface,
+    p: DVec3,
+    tri: usize,
+    v: f64,
+    w: f64,
+    allowed: &Allowed,
+) -> (Snap, bool) {
     let mut start = Start::new(surface, tri, DVec2::new(v, w));
     let mut best: Option<(Snap, bool)> = None;
     // Whether this solve goes on with a step carried into its triangle.
     let mut carried = false;
     for _ in 0..=MAX_HOPS {
         let tri = start.tri;
-        let (end, x, leaving, converged) = match descend_in(surface, p, start, &Region::WHOLE, true)
-        {
+        let exit = descend_in(surface, p, start, &Region::WHOLE, Some(allowed));
+        let (end, x, leaving, converged) = match exit {
             Exit::Stopped {
                 uv,
                 x,
@@ -189,9 +210,8 @@ pub(crate) fn descend_walking(
             None => (0..3)
                 .find(|&k| (end - CORNERS[k]).abs().max_element() < 1e-6)
                 .and_then(|k| downhill_around(surface, p, tri, k)),
-        }
-        .filter(|&(next, _)| faces.map_or(true, |f| Some(f[next]) == face));
-        match next {
+        };
+        match next.filter(|&(next, _)| allowed(next)) {
             Some((next, next_uv)) => start = Start::new(surface, next, next_uv),
             None => break,
         }
@@ -222,7 +242,7 @@ pub(crate) fn descend_within(
     region: &Region,
 ) -> (Snap, bool) {
     let start = Start::new(surface, tri, start);
-    match descend_in(surface, p, start, region, false) {
+    match descend_in(surface, p, start, region, None) {
         Exit::Stopped {
             uv, x, converged, ..
         } => (snap_at(tri, uv, x, p), converged),
@@ -317,8 +337,8 @@ fn downhill_around(
 /// the minimiser found (see [`Exit::Stopped`]), or hands a step on to a
 /// neighbour.
 ///
-/// When `walk`ing (the region is the whole triangle and the caller goes on
-/// across edges), a step that leaves the triangle across a smooth edge is
+/// When walking (`walk` says into which triangles: the region is the whole
+/// triangle and the caller goes on across edges), a step that leaves the triangle across a smooth edge is
 /// carried into the neighbour ([`carry`]); if it cannot be (it reaches past
 /// the neighbour too, or does not descend there), the step is cut short at
 /// the edge and, if Newton still wants to cross, the solve ends there,
@@ -332,7 +352,7 @@ fn descend_in<'a>(
     p: DVec3,
     start: Start<'a>,
     region: &Region,
-    walk: bool,
+    walk: Option<&Allowed>,
 ) -> Exit<'a> {
     let Start {
         tri,
@@ -353,8 +373,9 @@ fn descend_in<'a>(
         // Newton would leave across a smooth edge after a step cut short
         // there: the neighbour goes on.
         let newton_leaves = |k: usize| region.sides[k].0.dot(newton) < 0.0;
-        let hand_on = crossing.is_some_and(|k| newton_leaves(k) && is_smooth_edge(surface, tri, k));
-        if walk && clipped && hand_on {
+        let passable = |k: usize| walk.is_some_and(|a| is_passable(surface, tri, k, a));
+        let hand_on = crossing.is_some_and(|k| newton_leaves(k) && passable(k));
+        if clipped && hand_on {
             return stopped(uv, e.x, crossing);
         }
         let Some(step) = step.filter(|s| s.is_finite() && *s != DVec2::ZERO) else {
@@ -382,8 +403,8 @@ fn descend_in<'a>(
         // Walking, a step that leaves the triangle across a smooth edge is
         // tried whole in the neighbour: stopping at the edge would cost an
         // evaluation there on each side.
-        if walk && reach < 1.0 {
-            if let Some(next) = carry(surface, p, tri, uv + step, f + 1e-4 * slope) {
+        if let (Some(allowed), true) = (walk, reach < 1.0) {
+            if let Some(next) = carry(surface, p, tri, uv + step, f + 1e-4 * slope, allowed) {
                 return Exit::Carried(next);
             }
         }
@@ -555,6 +576,7 @@ fn carry<'a>(
     tri: usize,
     target: DVec2,
     enough: f64,
+    allowed: &Allowed,
 ) -> Option<Start<'a>> {
     let here = SurfacePoint {
         tri: tri as u32,
@@ -568,7 +590,7 @@ fn carry<'a>(
         return None;
     };
     let edge = (far + 1) % 3; // local edge k joins corners k and k + 1
-    if !is_smooth_edge(surface, tri, edge) {
+    if !is_passable(surface, tri, edge, allowed) {
         return None;
     }
     let there = across_edge(surface.net().topology(), here, edge)?;
@@ -590,12 +612,15 @@ fn f_round_off(x: DVec3, p: DVec3) -> f64 {
     eps * ((x - p).length() + eps)
 }
 
-/// Whether local edge `k` of `tri` joins it smoothly to a neighbour (is
-/// neither hard nor on the boundary).
-fn is_smooth_edge(surface: &Surface, tri: usize, k: usize) -> bool {
+/// Whether local edge `k` of `tri` joins it smoothly (neither hard nor on
+/// the boundary) to a neighbour a walk may enter.
+fn is_passable(surface: &Surface, tri: usize, k: usize, allowed: &Allowed) -> bool {
     let net = surface.net();
-    let edge = net.topology().triangle_edges()[tri][k] as usize;
-    !net.features().is_hard_edge(edge)
+    let topo = net.topology();
+    let edge = topo.triangle_edges()[tri][k] as usize;
+    let [a, b] = topo.edge_triangles()[edge];
+    let other = if a as usize == tri { b } else { a };
+    !net.features().is_hard_edge(edge) && allowed(other as usize)
 }
 
 /// Whether the residual r = X − p is normal to the surface (within a

@@ -45,8 +45,10 @@ mod project;
 
 use index::Content;
 pub(crate) use index::SnapIndex;
+pub(crate) use local::descend_confined;
 pub use local::Snap;
 use piece::{Piece, Shape};
+pub(crate) use project::checked_start;
 pub use project::{project, project_in_face};
 
 use crate::error::{Error, Result};
@@ -111,8 +113,22 @@ fn checked_guess(surface: &Surface, tri: usize, v: f64, w: f64) -> Result<(f64, 
 /// Best-first branch and bound from an optional first candidate.
 fn search(surface: &Surface, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Snap {
     let index = surface.derived(SnapIndex::new);
+    search_in(surface, index, p, seed, tolerance, &|_| true)
+}
+
+/// [`search`] over the patches of `index` (those of the triangles
+/// `allowed` admits, see [`SnapIndex::over`]), every walk kept to them.
+pub(crate) fn search_in(
+    surface: &Surface,
+    index: &SnapIndex,
+    p: DVec3,
+    seed: Option<Snap>,
+    tolerance: f64,
+    allowed: &local::Allowed,
+) -> Snap {
     let mut search = Search {
         surface,
+        allowed,
         p,
         // A little tighter: near 1e-12 of the diagonal the round-off of
         // the distances themselves (1e-16 of their size) must not let
@@ -162,7 +178,8 @@ fn search(surface: &Surface, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Sn
                     // The first solve walks to a local minimum of the
                     // surface: a good bound to prune with.
                     let (tri, uv) = index.start(cell, p);
-                    search.improve(local::descend(surface, p, tri, uv.x, uv.y).0);
+                    let (walked, _) = local::descend_confined(surface, p, tri, uv.x, uv.y, allowed);
+                    search.improve(walked);
                 }
                 // Pieces start one level below whole control triangles.
                 let level = index.level.max(1);
@@ -193,6 +210,8 @@ fn search(surface: &Surface, p: DVec3, seed: Option<Snap>, tolerance: f64) -> Sn
 /// The state of one query's search.
 struct Search<'a> {
     surface: &'a Surface,
+    /// The triangles walks may enter.
+    allowed: &'a local::Allowed<'a>,
     p: DVec3,
     /// Absolute tolerance of the certificate.
     tolerance: f64,
@@ -334,7 +353,8 @@ impl Search<'_> {
         let region = local::Region::new(piece.corners);
         let (own, _) = local::descend_within(self.surface, p, piece.tri, start, &region);
         if own.distance < self.best_distance {
-            let (walked, _) = local::descend(self.surface, p, piece.tri, own.v, own.w);
+            let (walked, _) =
+                local::descend_confined(self.surface, p, piece.tri, own.v, own.w, self.allowed);
             self.improve(own);
             self.improve(walked);
         }
@@ -402,7 +422,7 @@ impl Ord for Bound {
     }
 }
 
-fn check_point(p: DVec3) -> Result<()> {
+pub(crate) fn check_point(p: DVec3) -> Result<()> {
     if p.is_finite() {
         Ok(())
     } else {

@@ -45,15 +45,26 @@ fn project_walking(
     w: f64,
     in_face: bool,
 ) -> Result<Snap> {
+    let (v, w) = checked_start(surface, p, tri, v, w)?;
+    Ok(local::descend_walking(surface, p, tri, v, w, in_face).0)
+}
+
+/// A walk's point and guess checked, the guess with round-off outside its
+/// triangle clamped. Checked like `snap_near`'s guess, without evaluating
+/// it: the descent's first evaluation is the guess's.
+pub(crate) fn checked_start(
+    surface: &Surface,
+    p: DVec3,
+    tri: usize,
+    v: f64,
+    w: f64,
+) -> Result<(f64, f64)> {
     check_point(p)?;
-    // Checked like `snap_near`'s guess, without evaluating it: the
-    // descent's first evaluation is the guess's.
     surface.validate(tri, v, w)?;
     let (v, w) = (v.max(0.0), w.max(0.0));
-    let (v, w) = if v + w > 1.0 {
+    Ok(if v + w > 1.0 {
         (v / (v + w), w / (v + w))
     } else {
         (v, w)
-    };
-    Ok(local::descend_walking(surface, p, tri, v, w, in_face).0)
+    })
 }
