@@ -14,6 +14,12 @@ use loopsurf::partsurface::{bounds, Bounds, PartSurface};
 use loopsurf::DVec3;
 use std::ffi::c_int;
 
+/// The handle is documented as safe to query from many threads at once.
+const _: fn() = || {
+    fn shared<T: Send + Sync>() {}
+    shared::<PartSurface>();
+};
+
 /// Partitions the net as `ls_net_partition` does (`options` may be NULL
 /// for K = 1) and writes K to `nparts` and a new array `bounds` of 6 K
 /// doubles, to be released with `ls_free_array`: part q's box is its
