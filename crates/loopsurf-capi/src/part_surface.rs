@@ -8,7 +8,7 @@ use crate::buffers::malloc_copy;
 use crate::closest::{point, snap_outputs, write_snap};
 use crate::handles::{ls_part, ls_part_surface};
 use crate::net::ls_net;
-use crate::partition::{partition_of, ls_partition_options};
+use crate::partition::{ls_partition_options, partition_of};
 use crate::status::{input, output, read_options, run, run_void, Fail, LS_ERR_INVALID_ARGUMENT};
 use loopsurf::partsurface::{bounds, Bounds, PartSurface};
 use loopsurf::DVec3;
@@ -74,7 +74,10 @@ pub unsafe extern "C" fn ls_part_surface_build(
             .map(|b| (DVec3::from_slice(&b[..3]), DVec3::from_slice(&b[3..])))
             .collect();
         let index = usize::try_from(index).map_err(|_| {
-            Fail::new(LS_ERR_INVALID_ARGUMENT, format!("part {index}: must not be negative"))
+            Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("part {index}: must not be negative"),
+            )
         })?;
         let surface = PartSurface::new(part.clone(), index, boxes)?;
         *out = Box::into_raw(Box::new(ls_part_surface(surface)));
@@ -136,7 +139,10 @@ pub unsafe extern "C" fn ls_part_project(
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
         let left_at = output(left_at, "left_at")?;
         let t = u32::try_from(tri_guess).map_err(|_| {
-            Fail::new(LS_ERR_INVALID_ARGUMENT, format!("triangle {tri_guess}: negative"))
+            Fail::new(
+                LS_ERR_INVALID_ARGUMENT,
+                format!("triangle {tri_guess}: negative"),
+            )
         })?;
         let answer = surface.project(p, t, v, w)?;
         write_snap(outs, answer.snap);
