@@ -1382,20 +1382,27 @@ static void test_partition(const char* data_dir) {
     ls_net_free(net);
 }
 
-/* ls_net_part: a part's maps agree with ls_net_partition, its surface
-   evaluates its owned triangles as the whole's, its stream round-trips,
-   and bad requests and damaged streams write nothing. */
-static void test_part(const char* data_dir) {
+/* The pig tagged at 40°, its whole surface, and partition options for 5
+ * parts: what the part tests compare against. */
+static ls_net* pig_in_five(const char* data_dir, ls_surface** whole, ls_partition_options* po) {
     char path[1024];
     snprintf(path, sizeof path, "%s/pig.off", data_dir);
     ls_net* net = NULL;
     EXPECT(ls_net_load(path, &net), LS_OK);
     EXPECT(ls_net_tag_by_angle(net, 40, NULL), LS_OK);
+    EXPECT(ls_surface_build(net, whole), LS_OK);
+    EXPECT(ls_partition_options_default(po), LS_OK);
+    po->parts = 5;
+    return net;
+}
+
+/* ls_net_part: a part's maps agree with ls_net_partition, its surface
+   evaluates its owned triangles as the whole's, its stream round-trips,
+   and bad requests and damaged streams write nothing. */
+static void test_part(const char* data_dir) {
     ls_surface* whole = NULL;
-    EXPECT(ls_surface_build(net, &whole), LS_OK);
     ls_partition_options po;
-    EXPECT(ls_partition_options_default(&po), LS_OK);
-    po.parts = 5;
+    ls_net* net = pig_in_five(data_dir, &whole, &po);
     size_t nt = 0, cut = 0;
     int32_t* owner = NULL;
     EXPECT(ls_net_partition(net, &po, &nt, &owner, &cut), LS_OK);
@@ -1545,16 +1552,9 @@ static void check_part_closest(const ls_surface* whole, ls_part_surface* const* 
 /* ls_part_surface: walks and closest points of the parts of the pig in 5,
  * against the whole surface; refusals write nothing. */
 static void test_part_surface(const char* data_dir) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/pig.off", data_dir);
-    ls_net* net = NULL;
-    EXPECT(ls_net_load(path, &net), LS_OK);
-    EXPECT(ls_net_tag_by_angle(net, 40, NULL), LS_OK);
     ls_surface* whole = NULL;
-    EXPECT(ls_surface_build(net, &whole), LS_OK);
     ls_partition_options po;
-    EXPECT(ls_partition_options_default(&po), LS_OK);
-    po.parts = 5;
+    ls_net* net = pig_in_five(data_dir, &whole, &po);
     size_t nt = 0, cut = 0, k = 0;
     int32_t* owner = NULL;
     double* bounds = NULL;

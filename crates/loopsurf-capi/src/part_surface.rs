@@ -5,7 +5,7 @@
 //! net's.
 
 use crate::buffers::malloc_copy;
-use crate::closest::{point, snap_outputs, write_snap};
+use crate::closest::{guess, point, snap_outputs, write_snap};
 use crate::handles::{ls_part, ls_part_surface};
 use crate::net::ls_net;
 use crate::partition::{ls_partition_options, partition_of};
@@ -134,8 +134,7 @@ pub unsafe extern "C" fn ls_part_project(
     run("ls_part_project", || {
         let surface = &input(surface, "surface")?.0;
         let p = point(xyz)?;
-        input(vw_guess, "vw_guess")?;
-        let (v, w) = (*vw_guess, *vw_guess.add(1));
+        let (v, w) = guess(vw_guess)?;
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
         let left_at = output(left_at, "left_at")?;
         let t = u32::try_from(tri_guess).map_err(|_| {
