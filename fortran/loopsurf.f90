@@ -243,6 +243,60 @@ module loopsurf
             integer(c_size_t), value :: n
             type(c_ptr), intent(out) :: out
         end function
+        ! Every part's box (6 doubles a part), freed with ls_free_array.
+        integer(c_int) function ls_net_part_bounds(net, options, nparts, bounds) &
+                bind(C, name="ls_net_part_bounds")
+            import :: c_int, c_size_t, c_ptr, ls_partition_options
+            type(c_ptr), value :: net
+            type(ls_partition_options), intent(in) :: options
+            integer(c_size_t), intent(out) :: nparts
+            type(c_ptr), intent(out) :: bounds
+        end function
+        ! The surface of part index (0-based) of nparts, freed with
+        ! ls_part_surface_free.
+        integer(c_int) function ls_part_surface_build(part, index, nparts, bounds, out) &
+                bind(C, name="ls_part_surface_build")
+            import :: c_int, c_size_t, c_ptr, c_double
+            type(c_ptr), value :: part
+            integer(c_int), value :: index
+            integer(c_size_t), value :: nparts
+            real(c_double), intent(in) :: bounds(*)
+            type(c_ptr), intent(out) :: out
+        end function
+        subroutine ls_part_surface_free(surface) bind(C, name="ls_part_surface_free")
+            import :: c_ptr
+            type(c_ptr), value :: surface
+        end subroutine
+        integer(c_int) function ls_part_surface_bytes(surface, bytes) bind(C, name="ls_part_surface_bytes")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: surface
+            integer(c_size_t), intent(out) :: bytes
+        end function
+        ! ls_project kept to the part's owned triangles (0-based global ids);
+        ! left_at is -1, or the first triangle the walk wanted and the part
+        ! does not own.
+        integer(c_int) function ls_part_project(surface, xyz, tri_guess, vw_guess, tri, vw, xyz_out, &
+                distance, left_at) bind(C, name="ls_part_project")
+            import :: c_int, c_int32_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), intent(in) :: xyz(3), vw_guess(2)
+            integer(c_int32_t), value :: tri_guess
+            integer(c_int32_t), intent(out) :: tri, left_at
+            real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+        end function
+        ! The closest point over the owned triangles, the count of the parts
+        ! that may hold a nearer one and the first capacity of them.
+        integer(c_int) function ls_part_closest_point(surface, xyz, tri, vw, xyz_out, distance, &
+                capacity, nearer, n_nearer) bind(C, name="ls_part_closest_point")
+            import :: c_int, c_int32_t, c_size_t, c_double, c_ptr
+            type(c_ptr), value :: surface
+            real(c_double), intent(in) :: xyz(3)
+            integer(c_int32_t), intent(out) :: tri
+            real(c_double), intent(out) :: vw(2), xyz_out(3), distance
+            integer(c_size_t), value :: capacity
+            integer(c_int32_t), intent(out) :: nearer(*)
+            integer(c_size_t), intent(out) :: n_nearer
+        end function
         integer(c_int) function ls_fit_options_default(options) bind(C, name="ls_fit_options_default")
             import :: c_int, ls_fit_options
             type(ls_fit_options), intent(out) :: options

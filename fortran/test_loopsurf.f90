@@ -142,6 +142,52 @@ program test_loopsurf
         call ls_net_free(sub)
         call ls_part_free(part)
     end block
+    ! The surface of one part of four: a walk on its own triangles is the
+    ! whole's, and its closest point is the whole's or names a nearer part.
+    block
+        type(ls_partition_options) :: po
+        type(ls_part_options) :: qo
+        type(c_ptr) :: part, ps, bounds_c, global_c, owned_c
+        real(c_double), pointer :: bounds(:)
+        integer(c_int32_t), pointer :: global(:), owned(:)
+        integer(c_size_t) :: nparts, n_tris, n_near, n_bytes
+        integer(c_int32_t) :: t0, wt, pt, left_at, near(3)
+        real(c_double) :: e(18), p(3), wvw(2), wx(3), wd, pvw(2), px(3), pd
+        call check(ls_partition_options_default(po) == LS_OK, "part surface: options")
+        po%parts = 4
+        call check(ls_net_part_bounds(net, po, nparts, bounds_c) == LS_OK .and. nparts == 4, "part bounds")
+        call c_f_pointer(bounds_c, bounds, [6 * nparts])
+        call check(all(bounds(1:3) <= bounds(4:6)), "part bounds: low below high")
+        call check(ls_part_options_default(qo) == LS_OK, "part surface: part options")
+        qo%parts = 4
+        qo%part = 2
+        call check(ls_net_part(net, qo, part) == LS_OK, "part surface: part")
+        call check(ls_part_surface_build(part, 2_c_int, nparts, bounds, ps) == LS_OK, "part surface")
+        call check(ls_part_triangles(part, n_tris, global_c, owned_c) == LS_OK, "part surface: maps")
+        call c_f_pointer(global_c, global, [n_tris])
+        call c_f_pointer(owned_c, owned, [n_tris])
+        t0 = global(findloc(owned, 1, dim=1))
+        call check(ls_evaluate(surf, t0, 0.2d0, 0.3d0, e) == LS_OK, "part surface: a point")
+        p = 1.01d0 * e(1:3)
+        call check(ls_project(surf, p, t0, [0.3d0, 0.3d0], wt, wvw, wx, wd) == LS_OK, "whole project")
+        call check(ls_part_project(ps, p, t0, [0.3d0, 0.3d0], pt, pvw, px, pd, left_at) == LS_OK, &
+                   "part project")
+        call check(left_at == -1 .and. pt == wt .and. all(pvw == wvw) .and. pd == wd, &
+                   "part project: the whole's")
+        call check(ls_part_closest_point(ps, p, pt, pvw, px, pd, 3_c_size_t, near, n_near) == LS_OK, &
+                   "part closest point")
+        call check(ls_snap(surf, p, wt, wvw, wx, wd) == LS_OK, "whole snap")
+        call check(pd >= wd - 1d-12 .and. n_near <= 3, "part closest point: certified")
+        call check(pd <= wd + 1d-12 .or. n_near > 0, "part closest point: a nearer part named")
+        call check(ls_part_surface_bytes(ps, n_bytes) == LS_OK .and. n_bytes > 0, "part surface bytes")
+        call check(ls_part_project(ps, p, -1_c_int32_t, [0.3d0, 0.3d0], pt, pvw, px, pd, left_at) &
+                   == LS_ERR_INVALID_ARGUMENT, "part project: a negative triangle")
+        call ls_part_surface_free(ps)
+        call ls_part_free(part)
+        call ls_free_array(global_c)
+        call ls_free_array(owned_c)
+        call ls_free_array(bounds_c)
+    end block
     ! Mesher, uniform 3 on the octahedron: 8 * 9 triangles, closed.
     block
         type(ls_mesh_options) :: mo

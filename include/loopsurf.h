@@ -30,8 +30,8 @@ extern "C" {
  * Every function returning int returns LS_OK (0) or a negative LS_ERR_*
  * code and then sets the thread-local message ls_last_error() returns. The
  * opaque handles: a net is prepared, frozen into a surface, a part of a
- * partitioned net is a net of its own, and meshes on the surface are
- * handed over as ls_trimesh.
+ * partitioned net is a net of its own with a surface of its own, and
+ * meshes on the surface are handed over as ls_trimesh.
  * ========================================================================== */
 
 // Success.
@@ -88,6 +88,11 @@ typedef struct ls_net ls_net;
 // triangles and their halo as a net of its own, with the whole's ids.
 typedef struct ls_part ls_part;
 
+// The limit surface of one part (`ls_part_surface_build`): walks and
+// closest points over its owned triangles, in the whole's triangle ids;
+// safe to query from many threads at once.
+typedef struct ls_part_surface ls_part_surface;
+
 // An immutable limit surface, safe to query from many threads at once.
 typedef struct ls_surface ls_surface;
 
@@ -119,8 +124,8 @@ void ls_free_array(void *array);
  * Nets
  *
  * Load or build a control net, repair it explicitly, tag its hard
- * features, partition its triangles for parallel runs; fit a new net to a
- * CAD tessellation.
+ * features, partition its triangles for parallel runs and walk or snap on
+ * one part's surface; fit a new net to a CAD tessellation.
  * ========================================================================== */
 
 // `ls_net_load_with` flag: split polygon faces into triangles (ear
@@ -315,6 +320,78 @@ int ls_part_save(const ls_part *part, uint8_t **bytes, size_t *n);
 // damaged or foreign bytes give LS_ERR_BAD_STREAM, and nothing is
 // written.
 int ls_part_load(const uint8_t *bytes, size_t n, ls_part **out);
+
+// Partitions the net as `ls_net_partition` does (`options` may be NULL
+// for K = 1) and writes K to `nparts` and a new array `bounds` of 6 K
+// doubles, to be released with `ls_free_array`: part q's box is its
+// lowest corner (x, y, z) at `bounds[6q]` and its highest at
+// `bounds[6q + 3]`. A part's limit surface lies in its box (the box of
+// the control points its patches read), which is what lets a closest
+// point over one part tell which other parts may hold a nearer one.
+// Rank 0 can send these 6 K doubles to every rank with its part.
+int ls_net_part_bounds(const ls_net *net,
+                       const ls_partition_options *options,
+                       size_t *nparts,
+                       double **bounds_out);
+
+// Builds the limit surface of `part`, which is part `index` of the
+// `nparts` parts whose boxes are `bounds` (6 × nparts doubles, as
+// `ls_net_part_bounds` writes them), and writes it as a new
+// `ls_part_surface`, to be released with `ls_part_surface_free`. The
+// part is copied: it may be freed at once. An index outside 0 to
+// nparts − 1 is `LS_ERR_INVALID_ARGUMENT`, and nothing is written.
+int ls_part_surface_build(const ls_part *part,
+                          int index,
+                          size_t nparts,
+                          const double *bounds,
+                          ls_part_surface **out);
+
+// Frees a part's surface (NULL is ignored).
+void ls_part_surface_free(ls_part_surface *surface);
+
+// Writes the bytes the part's surface holds: its sub-net and maps, the
+// patches made so far and the snap index of its owned triangles once a
+// closest point has built it (a closest point makes every patch).
+int ls_part_surface_bytes(const ls_part_surface *surface, size_t *bytes);
+
+// `ls_project` on the part, from a guess on a triangle it owns
+// (`tri_guess`, a global id): the walk stays on the owned triangles,
+// where every evaluation is the whole's. Writes the answer as
+// `ls_project` does (`tri` a global id) and `left_at`: −1 when the walk
+// never asked for a triangle the part does not own, and the answer is
+// then the whole surface's `ls_project` bit for bit; otherwise the
+// first such triangle (global id), where the walk stopped, and the
+// query can go on at that triangle's owner. A guess on a triangle the
+// part does not own is `LS_ERR_INVALID_ARGUMENT`; nothing is written on
+// failure.
+int ls_part_project(const ls_part_surface *surface,
+                    const double *xyz,
+                    int32_t tri_guess,
+                    const double *vw_guess,
+                    int32_t *tri,
+                    double *vw,
+                    double *xyz_out,
+                    double *distance,
+                    int32_t *left_at);
+
+// The closest point to `xyz` over the part's owned triangles, certified
+// as `ls_snap`'s: writes it as `ls_snap` does (`tri` a global id), and
+// the other parts whose boxes are nearer than it, which alone may hold a
+// nearer point: their count to `n_nearer` and the first
+// min(count, capacity) of them, ascending, to `nearer` (which may be
+// NULL when capacity is 0; K − 1 entries always suffice). A count of 0
+// certifies the answer as the whole surface's closest point; otherwise
+// the whole's is the nearest of the answers of this part and those
+// parts. Nothing is written on failure.
+int ls_part_closest_point(const ls_part_surface *surface,
+                          const double *xyz,
+                          int32_t *tri,
+                          double *vw,
+                          double *xyz_out,
+                          double *distance,
+                          size_t capacity,
+                          int32_t *nearer,
+                          size_t *n_nearer);
 
 // Writes the default options of `ls_net_fit` into `options`.
 int ls_fit_options_default(ls_fit_options *options);

@@ -1382,20 +1382,27 @@ static void test_partition(const char* data_dir) {
     ls_net_free(net);
 }
 
-/* ls_net_part: a part's maps agree with ls_net_partition, its surface
-   evaluates its owned triangles as the whole's, its stream round-trips,
-   and bad requests and damaged streams write nothing. */
-static void test_part(const char* data_dir) {
+/* The pig tagged at 40°, its whole surface, and partition options for 5
+ * parts: what the part tests compare against. */
+static ls_net* pig_in_five(const char* data_dir, ls_surface** whole, ls_partition_options* po) {
     char path[1024];
     snprintf(path, sizeof path, "%s/pig.off", data_dir);
     ls_net* net = NULL;
     EXPECT(ls_net_load(path, &net), LS_OK);
     EXPECT(ls_net_tag_by_angle(net, 40, NULL), LS_OK);
+    EXPECT(ls_surface_build(net, whole), LS_OK);
+    EXPECT(ls_partition_options_default(po), LS_OK);
+    po->parts = 5;
+    return net;
+}
+
+/* ls_net_part: a part's maps agree with ls_net_partition, its surface
+   evaluates its owned triangles as the whole's, its stream round-trips,
+   and bad requests and damaged streams write nothing. */
+static void test_part(const char* data_dir) {
     ls_surface* whole = NULL;
-    EXPECT(ls_surface_build(net, &whole), LS_OK);
     ls_partition_options po;
-    EXPECT(ls_partition_options_default(&po), LS_OK);
-    po.parts = 5;
+    ls_net* net = pig_in_five(data_dir, &whole, &po);
     size_t nt = 0, cut = 0;
     int32_t* owner = NULL;
     EXPECT(ls_net_partition(net, &po, &nt, &owner, &cut), LS_OK);
@@ -1474,6 +1481,146 @@ static void test_part(const char* data_dir) {
     ls_net_free(net);
 }
 
+/* The walks of a part against the whole's: the same bits wherever the walk
+ * never asked for a triangle the part does not own, and that triangle named
+ * otherwise. */
+static void check_part_walks(const ls_surface* whole, const ls_part_surface* ps,
+                             const int32_t* owner, size_t nt, int me) {
+    size_t same = 0, left = 0;
+    for (size_t t = 0; t < nt; t++) {
+        if (owner[t] != me) continue;
+        double target[18], guess[2] = {0.3, 0.3};
+        EXPECT(ls_evaluate(whole, (int32_t)((t * 7 + 3) % nt), 0.2, 0.3, target), LS_OK);
+        for (int i = 0; i < 3; i++) target[i] += 0.01 * (i + 1);
+        int32_t wt, pt, left_at = -7;
+        double wvw[2], wx[3], wd, pvw[2], px[3], pd;
+        EXPECT(ls_project(whole, target, (int32_t)t, guess, &wt, wvw, wx, &wd), LS_OK);
+        EXPECT(ls_part_project(ps, target, (int32_t)t, guess, &pt, pvw, px, &pd, &left_at), LS_OK);
+        CHECK(pt >= 0 && (size_t)pt < nt && owner[pt] == me);
+        if (left_at == -1) {
+            same++;
+            CHECK(pt == wt && memcmp(pvw, wvw, sizeof pvw) == 0);
+            CHECK(memcmp(px, wx, sizeof px) == 0 && memcmp(&pd, &wd, sizeof pd) == 0);
+        } else {
+            left++;
+            CHECK(left_at >= 0 && (size_t)left_at < nt && owner[left_at] != me);
+        }
+    }
+    CHECK(same > 10 && left > 10);
+}
+
+/* Closest points over every part: the nearest of the parts' answers is the
+ * whole's, and a part whose answer is farther names a nearer part. */
+static void check_part_closest(const ls_surface* whole, ls_part_surface* const* parts,
+                               int k, size_t nt, double tol) {
+    for (size_t i = 0; i < 30; i++) {
+        double p[18];
+        EXPECT(ls_evaluate(whole, (int32_t)(i * 29 % nt), 0.25, 0.5, p), LS_OK);
+        p[0] += 0.05 * (double)(i % 3);
+        p[2] -= 0.04 * (double)(i % 5);
+        int32_t wt;
+        double wvw[2], wx[3], wd, best = INFINITY;
+        EXPECT(ls_snap(whole, p, &wt, wvw, wx, &wd), LS_OK);
+        double d[8];
+        size_t count[8];
+        int32_t nearer[8][8];
+        for (int q = 0; q < k; q++) {
+            int32_t t;
+            double vw[2], x[3];
+            EXPECT(ls_part_closest_point(parts[q], p, &t, vw, x, &d[q], 8, nearer[q], &count[q]),
+                   LS_OK);
+            CHECK(d[q] >= wd - tol && count[q] < (size_t)k);
+            best = d[q] < best ? d[q] : best;
+            size_t only_count = 99;
+            EXPECT(ls_part_closest_point(parts[q], p, &t, vw, x, &d[q], 0, NULL, &only_count),
+                   LS_OK);
+            CHECK(only_count == count[q]);
+        }
+        CHECK(fabs(best - wd) <= tol);
+        for (int q = 0; q < k; q++) {
+            if (d[q] <= wd + tol) continue;
+            int named = 0; /* a part holding the whole's answer is named */
+            for (size_t j = 0; j < count[q]; j++) {
+                CHECK(nearer[q][j] != q && (j == 0 || nearer[q][j] > nearer[q][j - 1]));
+                named |= d[nearer[q][j]] <= wd + tol;
+            }
+            CHECK(named);
+        }
+    }
+}
+
+/* ls_part_surface: walks and closest points of the parts of the pig in 5,
+ * against the whole surface; refusals write nothing. */
+static void test_part_surface(const char* data_dir) {
+    ls_surface* whole = NULL;
+    ls_partition_options po;
+    ls_net* net = pig_in_five(data_dir, &whole, &po);
+    size_t nt = 0, cut = 0, k = 0;
+    int32_t* owner = NULL;
+    double* bounds = NULL;
+    EXPECT(ls_net_partition(net, &po, &nt, &owner, &cut), LS_OK);
+    EXPECT(ls_net_part_bounds(net, &po, &k, &bounds), LS_OK);
+    CHECK(k == 5);
+    double diag = 0; /* every limit point lies in its owner's box */
+    for (size_t t = 0; t < nt; t++) {
+        double x[18];
+        EXPECT(ls_evaluate(whole, (int32_t)t, 0.3, 0.3, x), LS_OK);
+        const double* b = bounds + 6 * owner[t];
+        for (int i = 0; i < 3; i++) CHECK(b[i] <= x[i] && x[i] <= b[3 + i]);
+    }
+    for (int i = 0; i < 3; i++) diag += (bounds[3 + i] - bounds[i]) * (bounds[3 + i] - bounds[i]);
+
+    ls_part_options o;
+    EXPECT(ls_part_options_default(&o), LS_OK);
+    o.parts = 5;
+    ls_part_surface* parts[5] = {NULL};
+    for (int q = 0; q < 5; q++) {
+        ls_part* part = NULL;
+        o.part = q;
+        EXPECT(ls_net_part(net, &o, &part), LS_OK);
+        EXPECT(ls_part_surface_build(part, q, k, bounds, &parts[q]), LS_OK);
+        ls_part_free(part);
+    }
+    check_part_walks(whole, parts[3], owner, nt, 3);
+    size_t before = 0, after = 0;
+    EXPECT(ls_part_surface_bytes(parts[3], &before), LS_OK);
+    check_part_closest(whole, parts, 5, nt, 1e-10 * sqrt(diag) * 5);
+    EXPECT(ls_part_surface_bytes(parts[3], &after), LS_OK);
+    CHECK(before > 0 && after > before); /* the snap index is made */
+
+    /* Refusals: nothing written. */
+    int32_t t = -5, left_at = -5, other = 0;
+    while (owner[other] == 3) other++;
+    double x[3] = {0, 0, 0}, vw[2] = {0.3, 0.3}, xo[3], d = SENTINEL;
+    EXPECT(ls_part_project(parts[3], x, other, vw, &t, vw, xo, &d, &left_at),
+           LS_ERR_INVALID_ARGUMENT);
+    CHECK(strncmp(ls_last_error(), "ls_part_project:", 16) == 0);
+    EXPECT(ls_part_project(parts[3], x, -1, vw, &t, vw, xo, &d, &left_at), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_part_project(parts[3], x, 0, vw, &t, vw, xo, &d, NULL), LS_ERR_NULL_POINTER);
+    size_t n = 77;
+    EXPECT(ls_part_closest_point(parts[3], x, &t, vw, xo, &d, 2, NULL, &n), LS_ERR_NULL_POINTER);
+    x[0] = NAN;
+    EXPECT(ls_part_closest_point(parts[3], x, &t, vw, xo, &d, 0, NULL, &n), LS_ERR_NOT_FINITE);
+    CHECK(t == -5 && left_at == -5 && d == SENTINEL && n == 77);
+    ls_part_surface* out = (ls_part_surface*)&o;
+    ls_part* part = NULL;
+    EXPECT(ls_net_part(net, &o, &part), LS_OK);
+    EXPECT(ls_part_surface_build(part, 5, k, bounds, &out), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_part_surface_build(part, -1, k, bounds, &out), LS_ERR_INVALID_ARGUMENT);
+    EXPECT(ls_part_surface_build(part, 0, k, NULL, &out), LS_ERR_NULL_POINTER);
+    CHECK(out == (ls_part_surface*)&o);
+    EXPECT(ls_net_part_bounds(net, &po, &k, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_part_surface_bytes(NULL, &n), LS_ERR_NULL_POINTER);
+    ls_part_surface_free(NULL);
+
+    ls_part_free(part);
+    for (int q = 0; q < 5; q++) ls_part_surface_free(parts[q]);
+    ls_free_array(bounds);
+    ls_free_array(owner);
+    ls_surface_free(whole);
+    ls_net_free(net);
+}
+
 /* ls_net_fit: a new net whose limit passes within the tolerance of every
  * vertex; the defaults as documented; refusals name their field and leave
  * the output untouched. */
@@ -1530,6 +1677,7 @@ int main(int argc, char** argv) {
     test_repairs(data_dir);
     test_partition(data_dir);
     test_part(data_dir);
+    test_part_surface(data_dir);
     test_queries();
     test_refine();
     test_mesh();

@@ -49,13 +49,18 @@ pub unsafe extern "C" fn ls_snap_guess(
     run("ls_snap_guess", || {
         let surface = &input(surface, "surface")?.0;
         let p = point(xyz)?;
-        input(vw_guess, "vw_guess")?;
-        let (v, w) = (*vw_guess, *vw_guess.add(1));
+        let (v, w) = guess(vw_guess)?;
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
         let t = query(surface, tri_guess, v, w)?;
         write_snap(outs, loopsurf::snap::snap_near(surface, p, t, v, w)?);
         Ok(())
     })
+}
+
+/// Reads a guess's (v, w).
+pub(crate) unsafe fn guess(vw_guess: *const f64) -> Result<(f64, f64), Fail> {
+    input(vw_guess, "vw_guess")?;
+    Ok((*vw_guess, *vw_guess.add(1)))
 }
 
 pub(crate) type SnapOutputs = (*mut i32, *mut f64, *mut f64, *mut f64);

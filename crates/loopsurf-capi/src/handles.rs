@@ -17,6 +17,11 @@ pub struct ls_surface(pub(crate) Surface);
 /// triangles and their halo as a net of its own, with the whole's ids.
 pub struct ls_part(pub(crate) loopsurf::partition::Part);
 
+/// The limit surface of one part (`ls_part_surface_build`): walks and
+/// closest points over its owned triangles, in the whole's triangle ids;
+/// safe to query from many threads at once.
+pub struct ls_part_surface(pub(crate) loopsurf::partsurface::PartSurface);
+
 /// A mesh on the surface, made by `ls_mesh`, `ls_remesh`, `ls_adapt` or
 /// `ls_mesh_curve`; immutable, and safe to read from many threads at once.
 pub struct ls_trimesh {

@@ -34,6 +34,7 @@ pub mod mesh_labels;
 pub mod model;
 pub mod net;
 pub mod part;
+pub mod part_surface;
 pub mod partition;
 pub mod project;
 pub mod refine;

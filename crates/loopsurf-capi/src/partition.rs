@@ -5,7 +5,7 @@ use crate::buffers::malloc_copy;
 use crate::net::ls_net;
 use crate::status::LS_ERR_INVALID_ARGUMENT;
 use crate::status::{input, output, read_options, run, write_defaults, Fail, Options};
-use loopsurf::partition::{partition_with, PartitionOptions};
+use loopsurf::partition::{partition_with, Partition, PartitionOptions};
 use std::ffi::c_int;
 
 /// Options of `ls_net_partition`: fill with
@@ -66,17 +66,7 @@ pub unsafe extern "C" fn ls_net_partition(
             output(part, "part")?,
             output(cut, "cut")?,
         );
-        let k = usize::try_from(o.parts).map_err(|_| {
-            Fail::new(
-                LS_ERR_INVALID_ARGUMENT,
-                format!(
-                    "K = {}: must be between 1 and {}",
-                    o.parts,
-                    net.triangles().len()
-                ),
-            )
-        })?;
-        let p = partition_with(net, k, &PartitionOptions { seed: o.seed })?;
+        let p = partition_of(net, &o)?;
         let parts: Vec<i32> = p.parts().iter().map(|&q| q as i32).collect();
         let array = malloc_copy(&parts)?;
         *outs.0 = parts.len();
@@ -84,4 +74,23 @@ pub unsafe extern "C" fn ls_net_partition(
         *outs.2 = p.edge_cut();
         Ok(())
     })
+}
+
+/// The net's partition as `options` asks (K and the seed); K below 1 is
+/// `LS_ERR_INVALID_ARGUMENT`, as K above the triangle count is.
+pub(crate) fn partition_of(
+    net: &loopsurf::ControlNet,
+    o: &ls_partition_options,
+) -> Result<Partition, Fail> {
+    let k = usize::try_from(o.parts).map_err(|_| {
+        Fail::new(
+            LS_ERR_INVALID_ARGUMENT,
+            format!(
+                "K = {}: must be between 1 and {}",
+                o.parts,
+                net.triangles().len()
+            ),
+        )
+    })?;
+    Ok(partition_with(net, k, &PartitionOptions { seed: o.seed })?)
 }

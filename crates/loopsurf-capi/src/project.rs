@@ -2,7 +2,7 @@
 //! mesh generator or smoother has moved a little. Arguments and outputs as
 //! `ls_snap_guess`'s; only the search differs (local, uncertified, fast).
 
-use crate::closest::{point, snap_outputs, write_snap};
+use crate::closest::{guess, point, snap_outputs, write_snap};
 use crate::evaluate::query;
 use crate::status::{input, run};
 use crate::surface::ls_surface;
@@ -31,8 +31,7 @@ pub unsafe extern "C" fn ls_project(
     run("ls_project", || {
         let surface = &input(surface, "surface")?.0;
         let p = point(xyz)?;
-        input(vw_guess, "vw_guess")?;
-        let (v, w) = (*vw_guess, *vw_guess.add(1));
+        let (v, w) = guess(vw_guess)?;
         let outs = snap_outputs(tri, vw, xyz_out, distance)?;
         let t = query(surface, tri_guess, v, w)?;
         write_snap(outs, loopsurf::snap::project(surface, p, t, v, w)?);

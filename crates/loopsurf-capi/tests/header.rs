@@ -14,13 +14,13 @@ use std::path::Path;
 const SECTIONS: &[(&str, &str, &[&str])] = &[
     (
         "Status, handles, version and memory",
-        "Every function returning int returns LS_OK (0) or a negative LS_ERR_* code and then sets the thread-local message ls_last_error() returns. The opaque handles: a net is prepared, frozen into a surface, a part of a partitioned net is a net of its own, and meshes on the surface are handed over as ls_trimesh.",
+        "Every function returning int returns LS_OK (0) or a negative LS_ERR_* code and then sets the thread-local message ls_last_error() returns. The opaque handles: a net is prepared, frozen into a surface, a part of a partitioned net is a net of its own with a surface of its own, and meshes on the surface are handed over as ls_trimesh.",
         &["status.rs", "handles.rs"],
     ),
     (
         "Nets",
-        "Load or build a control net, repair it explicitly, tag its hard features, partition its triangles for parallel runs; fit a new net to a CAD tessellation.",
-        &["net.rs", "partition.rs", "part.rs", "fit.rs"],
+        "Load or build a control net, repair it explicitly, tag its hard features, partition its triangles for parallel runs and walk or snap on one part's surface; fit a new net to a CAD tessellation.",
+        &["net.rs", "partition.rs", "part.rs", "part_surface.rs", "fit.rs"],
     ),
     (
         "Surfaces",

@@ -33,9 +33,11 @@ use crate::topology::{Topology, NONE};
 use std::sync::Mutex;
 
 mod part;
+mod part_model;
 mod rebalance;
 
 pub use part::Part;
+pub use part_model::PartModel;
 
 /// Largest part allowed, relative to the mean part.
 pub const MAX_IMBALANCE: f64 = 1.05;
