@@ -62,7 +62,10 @@ pub unsafe extern "C" fn ls_net_part(
         let out = output(out, "out")?;
         let count = |x: c_int, what: &str| {
             usize::try_from(x).map_err(|_| {
-                Fail::new(LS_ERR_INVALID_ARGUMENT, format!("{what} {x}: must not be negative"))
+                Fail::new(
+                    LS_ERR_INVALID_ARGUMENT,
+                    format!("{what} {x}: must not be negative"),
+                )
             })
         };
         let (k, p) = (count(o.parts, "K =")?, count(o.part, "part")?);

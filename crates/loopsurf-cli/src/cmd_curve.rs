@@ -45,7 +45,8 @@ pub struct Args {
     /// Output file: .msh (gmsh 4.1) or .vtu (VTK Lagrange cells).
     #[arg(long, short = 'o', value_name = "OUT")]
     output: PathBuf,
-    /// Write .msh in gmsh's binary format instead of ASCII.
+    /// Write .msh in gmsh's binary format, and .vtu with inline binary
+    /// (base64) arrays, instead of ASCII.
     #[arg(long)]
     binary: bool,
     /// Also measure the largest distance to the surface of the input mesh

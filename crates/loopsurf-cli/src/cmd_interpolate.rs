@@ -20,6 +20,10 @@ pub struct Args {
     /// net's dihedral angles differ, so --hard-angle would not find the same ones.
     #[arg(long, value_name = "FILE")]
     write_hard_edges: Option<PathBuf>,
+    /// Write .vtu with inline binary (base64) arrays instead of ASCII:
+    /// about half the size, read by ParaView and meshio.
+    #[arg(long)]
+    binary: bool,
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
@@ -28,7 +32,12 @@ pub fn run(args: Args) -> Result<(), Error> {
     let start = Instant::now();
     let solved = solve(&net)?;
     let seconds = start.elapsed().as_secs_f64();
-    io::write_mesh(&args.output, solved.points(), solved.triangles())?;
+    io::write_mesh_as(
+        &args.output,
+        solved.points(),
+        solved.triangles(),
+        args.binary,
+    )?;
     if let Some(path) = &args.write_hard_edges {
         let text: String = net
             .hard_edges()

@@ -65,7 +65,8 @@ pub struct Args {
     /// surface; K > 1 needs a .msh (gmsh 4.1) or .vtu (VTK Lagrange) output.
     #[arg(long, value_name = "K", default_value_t = 1)]
     order: usize,
-    /// Write .msh in gmsh's binary format instead of ASCII.
+    /// Write .msh in gmsh's binary format, and .vtu with inline binary
+    /// (base64) arrays, instead of ASCII.
     #[arg(long)]
     binary: bool,
     /// Also write one `tri v w` line per output vertex, in output order.
@@ -106,7 +107,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         curved_output::write_curved(&args.output, &curved, &validity, args.binary)?;
         Some((curved, validity))
     } else {
-        write_output(&args.output, &surface, &mesh)?;
+        write_output(&args.output, &surface, &mesh, args.binary)?;
         None
     };
     if let Some(path) = &args.write_params {
@@ -244,7 +245,13 @@ fn chart_mesh(args: &Args, surface: &loopsurf::Surface) -> Result<SurfaceMesh, E
 /// (curve) id, as `loopsurf topology` writes them. Each cell array holds -1
 /// on the cells it does not describe (`edge` on triangles; the others on
 /// the lines).
-fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) -> Result<(), Error> {
+/// `binary` as in [`io::write_vtu`].
+fn write_output(
+    path: &Path,
+    surface: &loopsurf::Surface,
+    mesh: &SurfaceMesh,
+    binary: bool,
+) -> Result<(), Error> {
     let is_vtu = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("vtu"));
@@ -304,6 +311,7 @@ fn write_output(path: &Path, surface: &loopsurf::Surface, mesh: &SurfaceMesh) ->
             ("curvature_reliable", DataArray::I32(&reliable)),
         ],
         &cells,
+        binary,
     )
 }
 

@@ -21,6 +21,10 @@ pub struct Args {
     /// Write the control net with each triangle's part as the cell field `part` (.vtu).
     #[arg(short = 'o', long = "output", value_name = "OUT.vtu")]
     output: Option<PathBuf>,
+    /// Write .vtu with inline binary (base64) arrays instead of ASCII:
+    /// about half the size, read by ParaView and meshio.
+    #[arg(long)]
+    binary: bool,
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
@@ -47,6 +51,7 @@ pub fn run(args: Args) -> Result<(), Error> {
             net.triangles(),
             &[],
             &[("part", DataArray::I32(&part))],
+            args.binary,
         )?;
     }
     crate::write_stdout(|out| summary(out, &parts))

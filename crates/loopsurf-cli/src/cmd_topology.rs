@@ -24,6 +24,10 @@ pub struct Args {
     /// `corner` id (-1 where none applies).
     #[arg(long, short = 'o', value_name = "OUT.vtu")]
     output: Option<PathBuf>,
+    /// Write .vtu with inline binary (base64) arrays instead of ASCII:
+    /// about half the size, read by ParaView and meshio.
+    #[arg(long)]
+    binary: bool,
 }
 
 pub fn run(args: Args) -> Result<(), Error> {
@@ -42,7 +46,7 @@ pub fn run(args: Args) -> Result<(), Error> {
     let net = args.fit.apply(args.input.load()?)?;
     let model = Model::new(net.topology(), net.features());
     if let Some(path) = &args.output {
-        write_vtu(path, &net, &model)?;
+        write_vtu(path, &net, &model, args.binary)?;
     }
     crate::write_stdout(|out| {
         writeln!(
@@ -76,7 +80,12 @@ pub fn run(args: Args) -> Result<(), Error> {
 /// one line cell per hard control edge with its `edge` (curve) id; each
 /// cell array holds -1 on the cells of the other kind. Per vertex its
 /// `corner` id, or -1.
-fn write_vtu(path: &Path, net: &loopsurf::ControlNet, model: &Model) -> Result<(), Error> {
+fn write_vtu(
+    path: &Path,
+    net: &loopsurf::ControlNet,
+    model: &Model,
+    binary: bool,
+) -> Result<(), Error> {
     let topo = net.topology();
     let lines: Vec<(u32, [u32; 2])> = model
         .curves()
@@ -112,5 +121,6 @@ fn write_vtu(path: &Path, net: &loopsurf::ControlNet, model: &Model) -> Result<(
             ("face", DataArray::I32(&face)),
             ("edge", DataArray::I32(&edge)),
         ],
+        binary,
     )
 }

@@ -66,6 +66,7 @@ pub fn write_curved(
                 &lagrange,
                 &[],
                 &[("scaled_jacobian", DataArray::F64(&jacobian))],
+                binary,
             )
         }
         None => Err(Error::InvalidArgument(format!(

@@ -16,7 +16,12 @@ pub struct PartOptions {
     #[arg(long, value_name = "P", requires = "parts")]
     part: Option<usize>,
     /// With --parts: METIS's random seed, as `loopsurf partition --seed`.
-    #[arg(long, value_name = "N", requires = "parts", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "parts",
+        allow_negative_numbers = true
+    )]
     seed: Option<i32>,
 }
 

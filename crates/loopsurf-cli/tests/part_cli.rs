@@ -30,7 +30,15 @@ fn owners(k: usize) -> Vec<usize> {
 
 /// `tri v w` lines for `tris`, at the corners, on edges and inside.
 fn queries(tris: impl Iterator<Item = usize>) -> String {
-    let params = ["0 0", "1 0", "0 1", "0.5 0.5", "0.25 0", "0.2 0.3", "0.125 0.625"];
+    let params = [
+        "0 0",
+        "1 0",
+        "0 1",
+        "0.5 0.5",
+        "0.25 0",
+        "0.2 0.3",
+        "0.125 0.625",
+    ];
     let mut lines = String::new();
     for t in tris {
         for p in params {
@@ -58,13 +66,20 @@ fn a_part_answers_its_triangles_byte_for_byte_as_the_whole() {
     for p in 0..k {
         let mine: Vec<usize> = (0..owners.len()).filter(|&t| owners[t] == p).collect();
         let (ks, ps) = (k.to_string(), p.to_string());
-        let out = eval(&["--parts", &ks, "--part", &ps], &queries(mine.iter().copied()));
+        let out = eval(
+            &["--parts", &ks, "--part", &ps],
+            &queries(mine.iter().copied()),
+        );
         assert!(out.status.success(), "{}", text(&out.stderr));
         let expected: Vec<&str> = mine
             .iter()
             .flat_map(|&t| whole[7 * t..7 * t + 7].iter().copied())
             .collect();
-        assert_eq!(text(&out.stdout).lines().collect::<Vec<_>>(), expected, "part {p}");
+        assert_eq!(
+            text(&out.stdout).lines().collect::<Vec<_>>(),
+            expected,
+            "part {p}"
+        );
     }
 }
 
@@ -103,7 +118,10 @@ fn info_prints_the_part_line() {
     args.extend(VIKING);
     args.extend(["--parts", "1", "--part", "0"]);
     let got = text(&loopsurf(&args).stdout);
-    assert!(got.starts_with("part 0 of 1: owned 1680 halo 0 bytes "), "{got}");
+    assert!(
+        got.starts_with("part 0 of 1: owned 1680 halo 0 bytes "),
+        "{got}"
+    );
     let bytes: usize = got.trim().rsplit(' ').next().unwrap().parse().unwrap();
     assert!(bytes > 0);
 }
@@ -112,10 +130,22 @@ fn info_prints_the_part_line() {
 fn bad_part_requests_are_one_line_and_write_nothing() {
     let cases: [(&[&str], &str, &str); 6] = [
         (&["--parts", "0", "--part", "0"], "0 0.2 0.3\n", "K = 0"),
-        (&["--parts", "1681", "--part", "0"], "0 0.2 0.3\n", "K = 1681"),
-        (&["--parts", "3", "--part", "3"], "0 0.2 0.3\n", "part 3: out of range"),
+        (
+            &["--parts", "1681", "--part", "0"],
+            "0 0.2 0.3\n",
+            "K = 1681",
+        ),
+        (
+            &["--parts", "3", "--part", "3"],
+            "0 0.2 0.3\n",
+            "part 3: out of range",
+        ),
         (&["--parts", "3"], "0 0.2 0.3\n", "--part"),
-        (&["--parts", "3", "--part", "0"], "1680 0.2 0.3\n", "triangle 1680: out of range"),
+        (
+            &["--parts", "3", "--part", "0"],
+            "1680 0.2 0.3\n",
+            "triangle 1680: out of range",
+        ),
         (
             &["--parts", "3", "--part", "0", "--interpolate", "solve"],
             "0 0.2 0.3\n",

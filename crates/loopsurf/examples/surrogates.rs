@@ -326,7 +326,10 @@ fn convergence_table(shapes: &[Box<dyn Analytic>]) -> loopsurf::Result<()> {
     );
     println!("| shape | order | h = 16% | h = 8% | h = 4% | h = 2% | order seen |");
     println!("|---|---|---:|---:|---:|---:|---:|");
-    for shape in shapes.iter().filter(|s| matches!(s.name(), "sphere" | "torus")) {
+    for shape in shapes
+        .iter()
+        .filter(|s| matches!(s.name(), "sphere" | "torus"))
+    {
         let fit = fitted(&shape.net()?)?;
         let diagonal = shape.diagonal();
         let meshes: Vec<_> = [0.16, 0.08, 0.04, 0.02]
@@ -339,7 +342,11 @@ fn convergence_table(shapes: &[Box<dyn Analytic>]) -> loopsurf::Result<()> {
                 .map(|m| {
                     let curved = m.raise_order(&fit, order)?;
                     let worst = (0..curved.len())
-                        .flat_map(|t| cad::lattice(7).into_iter().map(move |(xi, eta)| (t, xi, eta)))
+                        .flat_map(|t| {
+                            cad::lattice(7)
+                                .into_iter()
+                                .map(move |(xi, eta)| (t, xi, eta))
+                        })
                         .map(|(t, xi, eta)| shape.distance(curved.map(t, xi, eta)[0]))
                         .fold(0.0, f64::max);
                     Ok(worst / diagonal)

@@ -25,8 +25,8 @@
 //! other can.
 
 use crate::error::{Error, Result};
-use crate::partition::{Part, Partition};
 use crate::net::ControlNet;
+use crate::partition::{Part, Partition};
 use crate::snap::{self, Snap, SnapIndex};
 use crate::surface::{Derived, Surface};
 use glam::DVec3;
@@ -134,12 +134,10 @@ impl PartSurface {
     /// are nearer than it.
     pub fn closest_point(&self, p: DVec3) -> Result<PartSnap> {
         snap::check_point(p)?;
-        let index = self
-            .snap_index
-            .get_or_init(|| {
-                let whole = self.part.whole_size()[1];
-                SnapIndex::over(&self.surface, Some(&self.owned), whole)
-            });
+        let index = self.snap_index.get_or_init(|| {
+            let whole = self.part.whole_size()[1];
+            SnapIndex::over(&self.surface, Some(&self.owned), whole)
+        });
         let owned = |t: usize| self.owned[t];
         let tolerance = snap::DEFAULT_TOLERANCE;
         let snap = snap::search_in(&self.surface, index, p, None, tolerance, &owned);

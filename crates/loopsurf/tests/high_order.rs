@@ -414,7 +414,7 @@ fn curved_files_read_back_exactly() {
             meshio_reads(&path, lagrange.faces.len());
         }
         let path = dir.join(format!("viking-p{k}.vtu"));
-        io::write_vtu_lagrange(&path, &lagrange, &[], &[]).unwrap();
+        io::write_vtu_lagrange(&path, &lagrange, &[], &[], false).unwrap();
         let back = io::read_vtu(&path).unwrap().to_lagrange().unwrap();
         assert_eq!(back.nodes, lagrange.nodes, "order {k} vtu");
         assert_eq!(back.triangles, lagrange.triangles, "order {k} vtu");

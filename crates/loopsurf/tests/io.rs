@@ -158,7 +158,7 @@ fn off_bad_input() {
             "badidx.off",
             b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2.5\n",
         ),
-        ("binary.off", b"OFF BINARY\n"),
+        ("binary.off", b"OFF false\n"),
         ("fourd.off", b"4OFF\n1 0 0\n0 0 0 0\n"),
         ("junk.off", &[0xff, 0xfe, 0, 1, 2]),
     ];
@@ -765,6 +765,7 @@ fn vtu_writer() {
             ("normal <n>", DataArray::Vec3(&n)),
         ],
         &[("component", DataArray::I32(&ids))],
+        false,
     )
     .unwrap();
     let text = std::fs::read_to_string(&p).unwrap();
@@ -819,13 +820,30 @@ fn vtu_writer() {
         &OUT_TRIS,
         &[("k", DataArray::F64(&short))],
         &[],
+        false,
     )
     .unwrap_err();
     assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
-    let err = write_vtu(&p, &points, &OUT_TRIS, &[], &[("c", DataArray::I32(&[1]))]).unwrap_err();
+    let err = write_vtu(
+        &p,
+        &points,
+        &OUT_TRIS,
+        &[],
+        &[("c", DataArray::I32(&[1]))],
+        false,
+    )
+    .unwrap_err();
     assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
     let nan = [0.0, 1.0, f64::NAN, 0.0, 0.0];
-    let err = write_vtu(&p, &points, &OUT_TRIS, &[("k", DataArray::F64(&nan))], &[]).unwrap_err();
+    let err = write_vtu(
+        &p,
+        &points,
+        &OUT_TRIS,
+        &[("k", DataArray::F64(&nan))],
+        &[],
+        false,
+    )
+    .unwrap_err();
     assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
 }
 

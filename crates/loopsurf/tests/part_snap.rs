@@ -42,7 +42,11 @@ fn bits(s: &snap::Snap) -> [u64; 5] {
         s.tri as u64,
         s.v.to_bits(),
         s.w.to_bits(),
-        s.point.to_array().map(f64::to_bits).iter().fold(0, |a, b| a ^ b),
+        s.point
+            .to_array()
+            .map(f64::to_bits)
+            .iter()
+            .fold(0, |a, b| a ^ b),
         s.distance.to_bits(),
     ]
 }
@@ -80,7 +84,10 @@ fn walks_near_rims_are_the_wholes_or_say_they_left() {
                 let expected = snap::project(&whole, target, t, 1.0 / 3.0, 1.0 / 3.0).unwrap();
                 let got = ps.project(target, t as u32, 1.0 / 3.0, 1.0 / 3.0).unwrap();
                 if owner[expected.tri] != p as u32 {
-                    assert!(got.left_at.is_some(), "{name} part {p}: from {t} to {target}");
+                    assert!(
+                        got.left_at.is_some(),
+                        "{name} part {p}: from {t} to {target}"
+                    );
                 }
                 match got.left_at {
                     None => {
@@ -114,8 +121,14 @@ fn closest_points_over_parts_meet_at_the_wholes() {
             let x = whole.eval(t, 0.3, 0.3).unwrap().x;
             let p = x + (0.002 + 0.05 * rng.next()) * size * rng.direction();
             let expected = snap::closest_point(&whole, p).unwrap();
-            let answers: Vec<_> = surfaces.iter().map(|s| s.closest_point(p).unwrap()).collect();
-            let best = answers.iter().map(|a| a.snap.distance).fold(f64::INFINITY, f64::min);
+            let answers: Vec<_> = surfaces
+                .iter()
+                .map(|s| s.closest_point(p).unwrap())
+                .collect();
+            let best = answers
+                .iter()
+                .map(|a| a.snap.distance)
+                .fold(f64::INFINITY, f64::min);
             assert!((best - expected.distance).abs() <= tol, "{name} point {i}");
             let home = owner[expected.tri];
             for (q, a) in answers.iter().enumerate() {

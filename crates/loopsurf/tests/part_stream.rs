@@ -25,7 +25,10 @@ fn a_part_round_trips_bit_for_bit() {
         assert_eq!(got.global_vertices(), sent.global_vertices());
         assert_eq!(got.vertex_kinds(), sent.vertex_kinds());
         assert_eq!(got.whole_size(), sent.whole_size());
-        assert_eq!(got.owned().collect::<Vec<_>>(), sent.owned().collect::<Vec<_>>());
+        assert_eq!(
+            got.owned().collect::<Vec<_>>(),
+            sent.owned().collect::<Vec<_>>()
+        );
         assert_eq!(got.net().hard_edges(), sent.net().hard_edges());
         let (a, b) = (
             Surface::new(sent.net()).unwrap(),

@@ -29,7 +29,11 @@ fn lattice() -> Vec<(f64, f64)> {
     for i in 0..4 {
         for j in 0..4 {
             let (v, w) = ((i as f64 + 0.5) / 4.0, (j as f64 + 0.5) / 4.0);
-            points.push(if v + w > 1.0 { (1.0 - v, 1.0 - w) } else { (v, w) });
+            points.push(if v + w > 1.0 {
+                (1.0 - v, 1.0 - w)
+            } else {
+                (v, w)
+            });
         }
     }
     points
@@ -73,7 +77,11 @@ fn check(name: &str, net: &ControlNet, k: usize) -> usize {
         assert_eq!(halo, partition.halo(p), "{name} K={k} part {p}: halo");
         for t in part.owned() {
             let g = part.global_triangles()[t] as usize;
-            assert_eq!(owner[g].replace(p), None, "{name}: triangle {g} owned twice");
+            assert_eq!(
+                owner[g].replace(p),
+                None,
+                "{name}: triangle {g} owned twice"
+            );
             for &(v, w) in &lattice {
                 assert_eq!(
                     answers(&surface, t, v, w),
@@ -83,7 +91,11 @@ fn check(name: &str, net: &ControlNet, k: usize) -> usize {
             }
         }
         check_whole_status(name, net, &part);
-        split += part.global_vertices().windows(2).filter(|w| w[0] == w[1]).count();
+        split += part
+            .global_vertices()
+            .windows(2)
+            .filter(|w| w[0] == w[1])
+            .count();
     }
     let unowned = owner.iter().position(Option::is_none);
     assert_eq!(unowned, None, "{name} K={k}: a triangle no part owns");

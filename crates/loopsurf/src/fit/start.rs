@@ -38,7 +38,10 @@ pub fn control_net(input: &ControlNet, size: f64) -> Result<ControlNet> {
                 .iter()
                 .position(|&(v, w)| p.v == v && p.w == w)?;
             let vertex = topo.triangles()[p.tri as usize][k] as usize;
-            input.features().is_tagged_vertex(vertex).then_some(i as u32)
+            input
+                .features()
+                .is_tagged_vertex(vertex)
+                .then_some(i as u32)
         })
         .collect();
     let (mut points, mut triangles) = (mesh.points.clone(), mesh.triangles.clone());
@@ -67,10 +70,26 @@ const APEX_VALENCE: usize = 6;
 /// a three-sided spike, which the fit cannot straighten and a remesh of
 /// the fitted surface fills with needles. Each split adds one triangle to
 /// the apex's fan (and halves the triangle across the edge).
-fn open_apex_fan(points: &mut Vec<DVec3>, triangles: &mut Vec<[u32; 3]>, hard: &[[u32; 2]], c: u32) {
-    let is_hard = |a: u32, b: u32| hard.iter().any(|&[x, y]| (x, y) == (a, b) || (x, y) == (b, a));
-    let fan: Vec<[u32; 3]> = triangles.iter().copied().filter(|t| t.contains(&c)).collect();
-    if fan.len() >= APEX_VALENCE || fan.iter().any(|t| t.iter().any(|&v| v != c && is_hard(c, v))) {
+fn open_apex_fan(
+    points: &mut Vec<DVec3>,
+    triangles: &mut Vec<[u32; 3]>,
+    hard: &[[u32; 2]],
+    c: u32,
+) {
+    let is_hard = |a: u32, b: u32| {
+        hard.iter()
+            .any(|&[x, y]| (x, y) == (a, b) || (x, y) == (b, a))
+    };
+    let fan: Vec<[u32; 3]> = triangles
+        .iter()
+        .copied()
+        .filter(|t| t.contains(&c))
+        .collect();
+    if fan.len() >= APEX_VALENCE
+        || fan
+            .iter()
+            .any(|t| t.iter().any(|&v| v != c && is_hard(c, v)))
+    {
         return;
     }
     for t in fan {

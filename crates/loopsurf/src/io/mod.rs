@@ -147,13 +147,25 @@ pub fn check_writable(path: &Path) -> Result<()> {
 /// (ASCII Cart3D) or `.vtu` (VTK XML, no data arrays). Text formats write
 /// every coordinate with enough digits to read back bit-exact.
 pub fn write_mesh(path: &Path, points: &[DVec3], tris: &[[u32; 3]]) -> Result<()> {
+    write_mesh_as(path, points, tris, false)
+}
+
+/// [`write_mesh`], with `.vtu` arrays in inline binary (base64) when
+/// `binary_vtu` is set; the other formats are as [`write_mesh`] writes
+/// them.
+pub fn write_mesh_as(
+    path: &Path,
+    points: &[DVec3],
+    tris: &[[u32; 3]],
+    binary_vtu: bool,
+) -> Result<()> {
     match Format::of(path) {
         Some(Format::Off) => write_off(path, points, tris),
         Some(Format::Obj) => write_obj(path, points, tris),
         Some(Format::Ply) => write_ply(path, points, tris),
         Some(Format::Stl) => write_stl(path, points, tris),
         Some(Format::Tri) => write_tri(path, points, tris),
-        Some(Format::Vtu) => write_vtu(path, points, tris, &[], &[]),
+        Some(Format::Vtu) => write_vtu(path, points, tris, &[], &[], binary_vtu),
         None => Err(Error::UnknownFormat {
             path: path.to_path_buf(),
         }),

@@ -133,7 +133,10 @@ impl NetBody {
             }
         }
         let indices = net.triangles().iter().flatten();
-        for i in indices.chain(self.hard.iter().flatten()).chain(&self.tagged) {
+        for i in indices
+            .chain(self.hard.iter().flatten())
+            .chain(&self.tagged)
+        {
             out.extend_from_slice(&i.to_le_bytes());
         }
     }

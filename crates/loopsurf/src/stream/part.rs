@@ -57,7 +57,12 @@ pub fn part_to_bytes(part: &Part) -> Vec<u8> {
         out.extend_from_slice(&g.to_le_bytes());
     }
     for &k in part.vertex_kinds() {
-        out.push(KINDS.iter().position(|&x| x == k).expect("every kind listed") as u8);
+        out.push(
+            KINDS
+                .iter()
+                .position(|&x| x == k)
+                .expect("every kind listed") as u8,
+        );
     }
     out.extend((0..nv).map(|v| part.is_boundary_vertex(v) as u8));
     for &g in part.global_triangles() {

@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use super::binary;
 use super::xml::{find, lossy, next_tag, Tag, XmlError};
 use super::{VtuArray, VtuMesh};
 
@@ -29,6 +30,8 @@ enum Parent {
 #[derive(Default)]
 struct Found {
     seen_file: bool,
+    /// The size in bytes of a binary array's byte count (`header_type`).
+    header: Option<usize>,
     /// NumberOfPoints, NumberOfCells and where the Piece starts.
     piece: Option<(usize, usize, usize)>,
     point_data: Vec<RawArray>,
@@ -53,27 +56,18 @@ pub(super) fn parse_xml(data: &[u8]) -> Result<VtuMesh, XmlError> {
             continue;
         }
         match tag.name {
-            b"VTKFile" => {
-                let ty = tag.attr("type").unwrap_or("");
-                if ty != "UnstructuredGrid" {
-                    return Err((
-                        tag.start,
-                        format!("a VTK {ty:?} file; only UnstructuredGrid (.vtu) is read"),
-                    ));
-                }
-                found.seen_file = true;
-            }
+            b"VTKFile" => found.file(&tag)?,
             b"Piece" => found.piece(&tag)?,
             b"AppendedData" => {
                 return Err((
                     tag.start,
-                    "appended (raw or base64) data: only ASCII .vtu files are read; \
-                     save as ASCII (ParaView: File > Save Data, Data Mode: Ascii)"
+                    "<AppendedData>: appended data is not read, only ASCII and inline \
+                     binary (base64) arrays; save with ParaView's Data Mode Ascii or Binary"
                         .into(),
                 ))
             }
             b"DataArray" => {
-                let (array, end) = data_array(data, &tag)?;
+                let (array, end) = data_array(data, &tag, found.header.unwrap_or(4))?;
                 pos = end;
                 found.keep(parent_of(&stack), array);
                 continue; // its closing tag is consumed
@@ -125,16 +119,16 @@ fn parent_of(stack: &[(&[u8], usize)]) -> Parent {
 }
 
 /// The DataArray that `tag` opens, read to its closing tag: the array and
-/// the offset past it.
-fn data_array(data: &[u8], tag: &Tag) -> Result<(RawArray, usize), XmlError> {
+/// the offset past it. `header` is the size of a binary array's byte count.
+fn data_array(data: &[u8], tag: &Tag, header: usize) -> Result<(RawArray, usize), XmlError> {
     let name = tag.attr("Name").unwrap_or("").to_string();
     let format = tag.attr("format").unwrap_or("ascii");
-    if format != "ascii" {
+    if format != "ascii" && format != "binary" {
         return Err((
             tag.start,
             format!(
-                "DataArray {name:?} is {format}: only ASCII .vtu files are read; \
-                 save as ASCII (ParaView: File > Save Data, Data Mode: Ascii)"
+                "DataArray {name:?} is {format}: only ASCII and inline binary (base64) \
+                 arrays are read; save with ParaView's Data Mode Ascii or Binary"
             ),
         ));
     }
@@ -147,11 +141,23 @@ fn data_array(data: &[u8], tag: &Tag) -> Result<(RawArray, usize), XmlError> {
             )
         })?,
     };
-    let integer = tag.attr("type").is_some_and(|t| t.contains("Int"));
-    let (values, end) = if tag.empty {
+    let ty = tag.attr("type").unwrap_or("");
+    let (text, end) = if tag.empty {
         (Vec::new(), tag.end)
     } else {
-        array_values(data, tag.end, &name, integer)?
+        array_text(data, tag.end, &name)?
+    };
+    let values = if format == "binary" {
+        let joined: Vec<u8> = text
+            .iter()
+            .flat_map(|&(a, b)| &data[a..b])
+            .copied()
+            .collect();
+        binary::decode(&joined, header)
+            .and_then(|bytes| binary::values(&bytes, ty))
+            .map_err(|m| (tag.start, format!("binary DataArray {name:?}: {m}")))?
+    } else {
+        ascii_values(data, &text, &name, ty.contains("Int"))?
     };
     let array = RawArray {
         name,
@@ -163,6 +169,46 @@ fn data_array(data: &[u8], tag: &Tag) -> Result<(RawArray, usize), XmlError> {
 }
 
 impl Found {
+    /// The VTKFile element: an UnstructuredGrid, uncompressed, little
+    /// endian, and the size of binary arrays' byte counts.
+    fn file(&mut self, tag: &Tag) -> Result<(), XmlError> {
+        let ty = tag.attr("type").unwrap_or("");
+        if ty != "UnstructuredGrid" {
+            return Err((
+                tag.start,
+                format!("a VTK {ty:?} file; only UnstructuredGrid (.vtu) is read"),
+            ));
+        }
+        if let Some(c) = tag.attr("compressor") {
+            return Err((
+                tag.start,
+                format!(
+                    "<VTKFile compressor={c:?}>: compressed data is not read; \
+                     save uncompressed (ParaView: Compressor Type None)"
+                ),
+            ));
+        }
+        let order = tag.attr("byte_order").unwrap_or("LittleEndian");
+        if order != "LittleEndian" {
+            return Err((
+                tag.start,
+                format!("<VTKFile byte_order={order:?}>: only LittleEndian is read"),
+            ));
+        }
+        self.header = Some(match tag.attr("header_type").unwrap_or("UInt32") {
+            "UInt32" => 4,
+            "UInt64" => 8,
+            h => {
+                return Err((
+                    tag.start,
+                    format!("<VTKFile header_type={h:?}>: UInt32 or UInt64 expected"),
+                ))
+            }
+        });
+        self.seen_file = true;
+        Ok(())
+    }
+
     /// The Piece's counts; a second Piece is refused.
     fn piece(&mut self, tag: &Tag) -> Result<(), XmlError> {
         if self.piece.is_some() {
@@ -199,22 +245,58 @@ impl Found {
     }
 }
 
-/// The numbers of a DataArray whose content starts at `from`, up to its
-/// `</DataArray>`, skipping the InformationKey elements ParaView puts
-/// there. Returns the values and the offset past the closing tag.
-fn array_values(
+/// The text of a DataArray whose content starts at `from`, up to its
+/// `</DataArray>`, as byte ranges, skipping the InformationKey elements
+/// ParaView puts there. Returns the ranges and the offset past the
+/// closing tag.
+fn array_text(
     data: &[u8],
     from: usize,
     name: &str,
-    integer: bool,
-) -> Result<(Vec<f64>, usize), XmlError> {
-    let mut values = Vec::new();
+) -> Result<(Vec<(usize, usize)>, usize), XmlError> {
+    let mut text = Vec::new();
     let mut pos = from;
     loop {
         let lt = find(data, pos, b"<")
             .ok_or_else(|| (from, format!("DataArray {name:?} is never closed")))?;
-        let text = &data[pos..lt];
-        for token in text
+        text.push((pos, lt));
+        let tag = next_tag(data, lt)?
+            .ok_or_else(|| (lt, format!("DataArray {name:?} is never closed")))?;
+        if tag.closing && tag.name == b"DataArray" {
+            return Ok((text, tag.end));
+        }
+        if tag.closing {
+            return Err((tag.start, format!("DataArray {name:?} is never closed")));
+        }
+        pos = tag.end;
+        if !tag.empty {
+            // Skip the element (an InformationKey and its values).
+            let mut close = b"</".to_vec();
+            close.extend_from_slice(tag.name);
+            let k = find(data, pos, &close).ok_or_else(|| {
+                (
+                    tag.start,
+                    format!(
+                        "<{}> inside DataArray {name:?} is never closed",
+                        lossy(tag.name)
+                    ),
+                )
+            })?;
+            pos = find(data, k, b">").map_or(data.len(), |e| e + 1);
+        }
+    }
+}
+
+/// The whitespace-separated numbers in the `text` ranges of `data`.
+fn ascii_values(
+    data: &[u8],
+    text: &[(usize, usize)],
+    name: &str,
+    integer: bool,
+) -> Result<Vec<f64>, XmlError> {
+    let mut values = Vec::new();
+    for &(a, b) in text {
+        for token in data[a..b]
             .split(|b| b.is_ascii_whitespace())
             .filter(|t| !t.is_empty())
         {
@@ -237,31 +319,8 @@ fn array_values(
             })?;
             values.push(x);
         }
-        let tag = next_tag(data, lt)?
-            .ok_or_else(|| (lt, format!("DataArray {name:?} is never closed")))?;
-        if tag.closing && tag.name == b"DataArray" {
-            return Ok((values, tag.end));
-        }
-        if tag.closing {
-            return Err((tag.start, format!("DataArray {name:?} is never closed")));
-        }
-        pos = tag.end;
-        if !tag.empty {
-            // Skip the element (an InformationKey and its values).
-            let mut close = b"</".to_vec();
-            close.extend_from_slice(tag.name);
-            let k = find(data, pos, &close).ok_or_else(|| {
-                (
-                    tag.start,
-                    format!(
-                        "<{}> inside DataArray {name:?} is never closed",
-                        lossy(tag.name)
-                    ),
-                )
-            })?;
-            pos = find(data, k, b">").map_or(data.len(), |e| e + 1);
-        }
     }
+    Ok(values)
 }
 
 /// Checks counts and indices and builds the mesh; `len` is the file's

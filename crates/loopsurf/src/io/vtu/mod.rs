@@ -24,6 +24,9 @@
 //! (`read`), a small XML tag scanner (`xml`) and the UnstructuredGrid
 //! built from its tags (`grid`).
 
+mod binary;
+#[cfg(test)]
+mod binary_tests;
 mod grid;
 mod read;
 #[cfg(test)]

@@ -23,6 +23,7 @@ fn triangles_then_lines() {
         &lines,
         &[],
         &[("edge", DataArray::I32(&ids))],
+        false,
     )
     .unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
@@ -39,7 +40,7 @@ fn triangles_then_lines() {
     assert_eq!(array("offsets"), ["3", "6", "8", "10"]);
     assert_eq!(array("types"), ["5", "5", "3", "3"]);
     assert_eq!(array("edge"), ["0", "0", "4", "7"]);
-    let err = write_vtu_with_lines(&path, &points, &tris, &[[0, 4]], &[], &[]).unwrap_err();
+    let err = write_vtu_with_lines(&path, &points, &tris, &[[0, 4]], &[], &[], false).unwrap_err();
     assert!(err.to_string().contains("line 0"), "{err}");
     let err = write_vtu_with_lines(
         &path,
@@ -48,6 +49,7 @@ fn triangles_then_lines() {
         &lines,
         &[],
         &[("edge", DataArray::I32(&ids[..2]))],
+        false,
     )
     .unwrap_err();
     assert!(err.to_string().contains("2 values for 4 cells"), "{err}");
@@ -115,6 +117,7 @@ fn lagrange_round_trip() {
             &mesh,
             &[("height", DataArray::F64(&heights))],
             &[("id", DataArray::I32(&ids))],
+            false,
         )
         .unwrap();
         let read = read_vtu(&path).unwrap();
@@ -141,6 +144,7 @@ fn lagrange_round_trip() {
         &mesh,
         &[],
         &[("face", DataArray::I32(&faces))],
+        false,
     )
     .unwrap_err();
     assert!(err.to_string().contains("\"face\" is written by"), "{err}");
@@ -159,6 +163,7 @@ fn linear_files_read_back() {
         &[[0, 1]],
         &[("k", DataArray::F64(&curvature))],
         &[],
+        false,
     )
     .unwrap();
     let read = read_vtu(&path).unwrap();
@@ -270,14 +275,14 @@ fn errors_name_the_line() {
     let msg = vtu_err(&binary);
     let line = line_of(&binary, "Name=\"temp\"");
     assert!(
-        msg.contains(&format!("bad.vtu:{line}:")) && msg.contains("save as ASCII"),
+        msg.contains(&format!("bad.vtu:{line}:")) && msg.contains("damaged base64"),
         "{msg}"
     );
     let appended = PARAVIEW.replace(
         "  </UnstructuredGrid>",
         "  </UnstructuredGrid>\n<AppendedData encoding=\"raw\">_abc</AppendedData>",
     );
-    assert!(vtu_err(&appended).contains("save as ASCII"));
+    assert!(vtu_err(&appended).contains("appended data is not read"));
     let index = PARAVIEW.replace("0 1 2 3 4 5 1\n", "0 1 2 3 4 5 6\n");
     let msg = vtu_err(&index);
     // Cell checks name the array's line.

@@ -1,11 +1,12 @@
-//! The `.vtu` writer: checks points, cells and arrays, then writes ASCII
-//! VTK XML.
+//! The `.vtu` writer: checks points, cells and arrays, then writes VTK XML
+//! with ASCII or inline binary (base64) arrays.
 
 use std::io::Write;
 use std::path::Path;
 
 use glam::DVec3;
 
+use super::binary;
 use super::{VTK_LAGRANGE_CURVE, VTK_LAGRANGE_TRIANGLE, VTK_LINE, VTK_TRIANGLE};
 use crate::error::{Error, Result};
 use crate::io::lagrange::LagrangeMesh;
@@ -30,6 +31,19 @@ impl DataArray<'_> {
             DataArray::F64(a) => a.len(),
             DataArray::I32(a) => a.len(),
             DataArray::Vec3(a) => a.len(),
+        }
+    }
+
+    /// The values' little-endian bytes, as a binary DataArray holds them.
+    fn le_bytes(&self) -> Vec<u8> {
+        match self {
+            DataArray::F64(a) => a.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            DataArray::I32(a) => a.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            DataArray::Vec3(a) => a
+                .iter()
+                .flat_map(|p| p.to_array())
+                .flat_map(|x| x.to_le_bytes())
+                .collect(),
         }
     }
 
@@ -58,14 +72,17 @@ impl CellBlock<'_> {
 
 /// Writes a `.vtu` file with the given point and cell arrays. Every point
 /// array must have one entry per point, every cell array one per triangle.
+/// `binary` writes the arrays as inline base64 (VTK's `format="binary"`,
+/// about half the size of ASCII) instead of text.
 pub fn write_vtu(
     path: &Path,
     points: &[DVec3],
     tris: &[[u32; 3]],
     point_data: &[(&str, DataArray)],
     cell_data: &[(&str, DataArray)],
+    binary: bool,
 ) -> Result<()> {
-    write_vtu_with_lines(path, points, tris, &[], point_data, cell_data)
+    write_vtu_with_lines(path, points, tris, &[], point_data, cell_data, binary)
 }
 
 /// [`write_vtu`] with line cells (VTK_LINE) after the triangles, e.g. the
@@ -78,6 +95,7 @@ pub fn write_vtu_with_lines(
     lines: &[[u32; 2]],
     point_data: &[(&str, DataArray)],
     cell_data: &[(&str, DataArray)],
+    binary: bool,
 ) -> Result<()> {
     crate::io::check_tris(points, tris)?;
     for (l, line) in lines.iter().enumerate() {
@@ -106,7 +124,7 @@ pub fn write_vtu_with_lines(
             vtk_type: VTK_LINE,
         },
     ];
-    write_checked(path, points, &blocks, point_data, cell_data)
+    write_checked(path, points, &blocks, (point_data, cell_data), binary)
 }
 
 /// Writes a curved mesh as VTK Lagrange cells: the triangles as
@@ -126,11 +144,13 @@ pub fn write_vtu_with_lines(
 ///
 /// Caller arrays come after these, must not reuse their names, and have one
 /// entry per node (point data) or per cell, triangles first (cell data).
+/// `binary` as in [`write_vtu`].
 pub fn write_vtu_lagrange(
     path: &Path,
     mesh: &LagrangeMesh,
     point_data: &[(&str, DataArray)],
     cell_data: &[(&str, DataArray)],
+    binary: bool,
 ) -> Result<()> {
     mesh.validate()?;
     for (name, _) in point_data.iter().chain(cell_data) {
@@ -194,16 +214,28 @@ pub fn write_vtu_lagrange(
             vtk_type: if linear { VTK_LINE } else { VTK_LAGRANGE_CURVE },
         },
     ];
-    write_checked(path, &mesh.nodes, &blocks, &points_out, &cells_out)
+    write_checked(
+        path,
+        &mesh.nodes,
+        &blocks,
+        (&points_out, &cells_out),
+        binary,
+    )
 }
+
+/// The point and the cell arrays.
+type Arrays<'a, 'b> = (
+    &'a [(&'b str, DataArray<'b>)],
+    &'a [(&'b str, DataArray<'b>)],
+);
 
 /// Checks the arrays against the points and cells, then writes.
 fn write_checked(
     path: &Path,
     points: &[DVec3],
     blocks: &[CellBlock],
-    point_data: &[(&str, DataArray)],
-    cell_data: &[(&str, DataArray)],
+    (point_data, cell_data): Arrays,
+    binary: bool,
 ) -> Result<()> {
     let ncells: usize = blocks.iter().map(CellBlock::len).sum();
     for (kind, arrays, n) in [
@@ -225,7 +257,8 @@ fn write_checked(
         }
     }
     let mut w = crate::io::create(path)?;
-    write_body(&mut w, points, blocks, point_data, cell_data).map_err(crate::io::io_error(path))?;
+    write_body(&mut w, points, blocks, (point_data, cell_data), binary)
+        .map_err(crate::io::io_error(path))?;
     crate::io::finish(w, path)
 }
 
@@ -233,8 +266,8 @@ fn write_body(
     w: &mut impl Write,
     points: &[DVec3],
     blocks: &[CellBlock],
-    point_data: &[(&str, DataArray)],
-    cell_data: &[(&str, DataArray)],
+    (point_data, cell_data): Arrays,
+    binary: bool,
 ) -> std::io::Result<()> {
     let ncells: usize = blocks.iter().map(CellBlock::len).sum();
     writeln!(w, "<?xml version=\"1.0\"?>")?;
@@ -251,18 +284,45 @@ fn write_body(
     for (tag, arrays) in [("PointData", point_data), ("CellData", cell_data)] {
         writeln!(w, "      <{tag}>")?;
         for (name, array) in arrays {
-            write_array(w, name, array)?;
+            write_array(w, name, array, binary)?;
         }
         writeln!(w, "      </{tag}>")?;
     }
     writeln!(w, "      <Points>")?;
-    write_array(w, "Points", &DataArray::Vec3(points))?;
+    write_array(w, "Points", &DataArray::Vec3(points), binary)?;
     writeln!(w, "      </Points>")?;
     writeln!(w, "      <Cells>")?;
-    writeln!(
-        w,
-        "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
-    )?;
+    if binary {
+        write_cells_binary(w, blocks)?;
+    } else {
+        write_cells_ascii(w, blocks)?;
+    }
+    writeln!(w, "      </Cells>")?;
+    writeln!(w, "    </Piece>")?;
+    writeln!(w, "  </UnstructuredGrid>")?;
+    writeln!(w, "</VTKFile>")
+}
+
+/// Each cell's end in the connectivity (VTK's offsets).
+fn offsets<'a>(blocks: &'a [CellBlock]) -> impl Iterator<Item = u64> + 'a {
+    blocks
+        .iter()
+        .flat_map(|b| std::iter::repeat(b.per_cell as u64).take(b.len()))
+        .scan(0, |end, n| {
+            *end += n;
+            Some(*end)
+        })
+}
+
+/// Each cell's VTK type.
+fn types<'a>(blocks: &'a [CellBlock]) -> impl Iterator<Item = u8> + 'a {
+    blocks
+        .iter()
+        .flat_map(|b| std::iter::repeat(b.vtk_type).take(b.len()))
+}
+
+fn write_cells_ascii(w: &mut impl Write, blocks: &[CellBlock]) -> std::io::Result<()> {
+    open_array(w, "Int64", "connectivity", None, false)?;
     for block in blocks {
         for cell in block.nodes.chunks_exact(block.per_cell) {
             w.write_all(b"         ")?;
@@ -273,44 +333,78 @@ fn write_body(
         }
     }
     writeln!(w, "        </DataArray>")?;
-    writeln!(
-        w,
-        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">"
-    )?;
-    let mut end = 0;
-    for block in blocks {
-        for _ in 0..block.len() {
-            end += block.per_cell as u64;
-            writeln!(w, "          {end}")?;
-        }
+    open_array(w, "Int64", "offsets", None, false)?;
+    for end in offsets(blocks) {
+        writeln!(w, "          {end}")?;
     }
     writeln!(w, "        </DataArray>")?;
-    writeln!(
-        w,
-        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">"
-    )?;
-    for block in blocks {
-        for _ in 0..block.len() {
-            writeln!(w, "          {}", block.vtk_type)?;
-        }
+    open_array(w, "UInt8", "types", None, false)?;
+    for t in types(blocks) {
+        writeln!(w, "          {t}")?;
     }
-    writeln!(w, "        </DataArray>")?;
-    writeln!(w, "      </Cells>")?;
-    writeln!(w, "    </Piece>")?;
-    writeln!(w, "  </UnstructuredGrid>")?;
-    writeln!(w, "</VTKFile>")
+    writeln!(w, "        </DataArray>")
 }
-fn write_array(w: &mut impl Write, name: &str, array: &DataArray) -> std::io::Result<()> {
+
+/// Connectivity and offsets as Int64 (as in ASCII, so the reader's
+/// counts need no second width), types as UInt8.
+fn write_cells_binary(w: &mut impl Write, blocks: &[CellBlock]) -> std::io::Result<()> {
+    let conn: Vec<u8> = blocks
+        .iter()
+        .flat_map(|b| b.nodes.iter().flat_map(|&i| (i as i64).to_le_bytes()))
+        .collect();
+    let offs: Vec<u8> = offsets(blocks)
+        .flat_map(|e| (e as i64).to_le_bytes())
+        .collect();
+    let tys: Vec<u8> = types(blocks).collect();
+    for (ty, name, bytes) in [
+        ("Int64", "connectivity", conn),
+        ("Int64", "offsets", offs),
+        ("UInt8", "types", tys),
+    ] {
+        open_array(w, ty, name, None, true)?;
+        write_encoded(w, &bytes)?;
+    }
+    Ok(())
+}
+
+/// A DataArray's opening tag; `components` is written when given.
+fn open_array(
+    w: &mut impl Write,
+    ty: &str,
+    name: &str,
+    components: Option<usize>,
+    binary: bool,
+) -> std::io::Result<()> {
+    let comps = components.map_or(String::new(), |c| format!(" NumberOfComponents=\"{c}\""));
+    let format = if binary { "binary" } else { "ascii" };
+    writeln!(
+        w,
+        "        <DataArray type=\"{ty}\" Name=\"{}\"{comps} format=\"{format}\">",
+        xml_escape(name)
+    )
+}
+
+/// A binary array's content, one base64 line, and its closing tag.
+fn write_encoded(w: &mut impl Write, bytes: &[u8]) -> std::io::Result<()> {
+    writeln!(w, "          {}", binary::encode(bytes))?;
+    writeln!(w, "        </DataArray>")
+}
+
+fn write_array(
+    w: &mut impl Write,
+    name: &str,
+    array: &DataArray,
+    binary: bool,
+) -> std::io::Result<()> {
     let (ty, comps) = match array {
         DataArray::F64(_) => ("Float64", 1),
         DataArray::I32(_) => ("Int32", 1),
         DataArray::Vec3(_) => ("Float64", 3),
     };
-    writeln!(
-        w,
-        "        <DataArray type=\"{ty}\" Name=\"{}\" NumberOfComponents=\"{comps}\" format=\"ascii\">",
-        xml_escape(name)
-    )?;
+    open_array(w, ty, name, Some(comps), binary)?;
+    if binary {
+        return write_encoded(w, &array.le_bytes());
+    }
     match array {
         DataArray::F64(a) => {
             for &x in *a {
