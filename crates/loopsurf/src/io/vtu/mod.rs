@@ -1,7 +1,7 @@
-//! VTK XML UnstructuredGrid (`.vtu`), ASCII, for looking at results in
-//! ParaView: a triangulation plus named per-point and per-cell arrays
-//! (curvature, error fields, component IDs), curved (Lagrange) meshes, and
-//! reading ASCII files back.
+//! VTK XML UnstructuredGrid (`.vtu`), ASCII or with inline binary arrays,
+//! for looking at results in ParaView: a triangulation plus named
+//! per-point and per-cell arrays (curvature, error fields, component IDs),
+//! curved (Lagrange) meshes, and reading such files back.
 //!
 //! Hand-written because the subset is tiny: Points as Float64 triples,
 //! Cells as Int64 connectivity and offsets with UInt8 type 5 (VTK_TRIANGLE)
@@ -16,13 +16,18 @@
 //! VTK's ASCII reader cannot parse `nan` or `inf`, so non-finite values are
 //! refused instead of producing a file ParaView chokes on.
 //!
-//! The reader ([`read_vtu`]) takes ASCII files: ours, and what ParaView
-//! saves with "Data Mode: Ascii". Binary and appended data are refused
-//! with a message saying so, rather than half-supported.
+//! With `binary` the writers put every array inline as base64
+//! (`format="binary"`, UInt64 byte counts; see `binary` for why not raw
+//! appended data): about half the size of ASCII, the same bits.
+//!
+//! The reader ([`read_vtu`]) takes ASCII and inline binary arrays
+//! (UInt32 or UInt64 byte counts): ours, and what ParaView saves with
+//! "Data Mode" Ascii or Binary, uncompressed. Appended and compressed data
+//! are refused with a message saying so, rather than half-supported.
 //!
 //! The writer is in `write`; the reader is the [`VtuMesh`] it returns
-//! (`read`), a small XML tag scanner (`xml`) and the UnstructuredGrid
-//! built from its tags (`grid`).
+//! (`read`), a small XML tag scanner (`xml`), the base64 arrays
+//! (`binary`) and the UnstructuredGrid built from its tags (`grid`).
 
 mod binary;
 #[cfg(test)]

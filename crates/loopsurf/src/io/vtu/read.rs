@@ -13,7 +13,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::io::lagrange::{triangle_order, LagrangeMesh};
 
-/// What [`read_vtu`] found in an ASCII `.vtu` file.
+/// What [`read_vtu`] found in a `.vtu` file.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct VtuMesh {
     pub points: Vec<DVec3>,
@@ -171,7 +171,8 @@ fn id_of(array: Option<&VtuArray>, what: &str, i: usize) -> Result<u32> {
     }
 }
 
-/// Reads an ASCII VTK XML UnstructuredGrid (`.vtu`) file.
+/// Reads a VTK XML UnstructuredGrid (`.vtu`) file with ASCII or inline
+/// binary (base64, uncompressed) arrays.
 pub fn read_vtu(path: &Path) -> Result<VtuMesh> {
     parse_vtu(&crate::io::read_bytes(path)?, path)
 }
