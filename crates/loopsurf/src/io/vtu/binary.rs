@@ -77,8 +77,11 @@ pub(super) fn values(bytes: &[u8], ty: &str) -> Result<Vec<f64>, String> {
     Ok(bytes.chunks_exact(size).map(read).collect())
 }
 
-/// A VTK type's size and its little-endian reading as f64.
-fn reader(ty: &str) -> Option<(usize, fn(&[u8]) -> f64)> {
+/// Reads one little-endian value of a VTK type as f64.
+type ReadValue = fn(&[u8]) -> f64;
+
+/// A VTK type's size and its reading.
+fn reader(ty: &str) -> Option<(usize, ReadValue)> {
     Some(match ty {
         "Float32" => (4, |b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64),
         "Float64" => (8, |b| f64::from_le_bytes(widen(b))),
