@@ -84,8 +84,25 @@ fn partition_and_topology_write_binary_vtu() {
 }
 
 #[test]
-fn refine_writes_binary_vtu() {
+fn refine_and_adapt_write_binary_vtu() {
     assert_same(&["refine", "--example", "viking", "-k", "1"], "refined.vtu");
+    let adapt = [
+        "adapt",
+        "--example",
+        "viking",
+        "--angle",
+        "11",
+        "--levels",
+        "1",
+    ];
+    assert_same(&adapt, "adapted.vtu");
+}
+
+#[test]
+fn fit_and_interpolate_write_binary_vtu() {
+    let fit = ["fit", "--example", "viking", "--tolerance", "0.01"];
+    assert_same(&fit, "fitted.vtu");
+    assert_same(&["interpolate", "--example", "viking"], "solved.vtu");
 }
 
 /// meshio (if installed) reads `path` and finds as many points as our
