@@ -4,7 +4,10 @@ mod support;
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
-use support::{assert_clean_failure, loopsurf, loopsurf_with_stdin, scratch, text};
+use support::{
+    assert_clean_failure, assert_refused_without_writing, loopsurf, loopsurf_with_stdin, scratch,
+    text,
+};
 
 #[test]
 fn info_on_the_viking_finds_two_hard_circles() {
@@ -107,16 +110,17 @@ fn bad_input_exits_2_with_one_line() {
         &loopsurf(&["info", "--example", "cube", "--hard-angle", "-5"]),
         "hard angle",
     );
-    assert_clean_failure(
-        &loopsurf(&["refine", "--example", "cube", "-k", "99", "-o", "x.obj"]),
+    assert_refused_without_writing(
+        &["refine", "--example", "cube", "-k", "99", "-o", "{out}"],
+        "x.obj",
         "levels",
     );
     assert_clean_failure(&loopsurf(&["info"]), "MESH");
     for charts in [&[][..], &["--charts"][..]] {
         let mut args = vec!["mesh", "--example", "cube", "--size", "0.01"];
-        args.extend(["--max-triangles", "1000", "-o", "x.obj"]);
+        args.extend(["--max-triangles", "1000", "-o", "{out}"]);
         args.extend(charts);
-        assert_clean_failure(&loopsurf(&args), "over the");
+        assert_refused_without_writing(&args, "x.obj", "over the");
     }
     assert_clean_failure(&loopsurf(&["frobnicate"]), "frobnicate");
     let tags = scratch("tags_bad.txt");
@@ -516,16 +520,9 @@ fn mesh_rejects_bad_options_with_one_line() {
     );
     assert_clean_failure(&mesh(&["--adapt", "nonsense"]), "nonsense");
     assert_clean_failure(&mesh(&["--uniform", "100000"]), "at most");
-    assert_clean_failure(
-        &loopsurf(&[
-            "mesh",
-            "--example",
-            "cube",
-            "--uniform",
-            "2",
-            "-o",
-            "x.unknown",
-        ]),
+    assert_refused_without_writing(
+        &["mesh", "--example", "cube", "--uniform", "2", "-o", "{out}"],
+        "x.unknown",
         "x.unknown",
     );
 }
@@ -751,8 +748,9 @@ fn topology_of_the_cube() {
     }
     assert_cube_topology_vtu(&vtu, &surface);
     // Anything but a .vtu is refused before any work.
-    assert_clean_failure(
-        &loopsurf(&["topology", "--example", "cube", "-o", "x.obj"]),
+    assert_refused_without_writing(
+        &["topology", "--example", "cube", "-o", "{out}"],
+        "x.obj",
         "x.obj",
     );
 }
@@ -1090,15 +1088,16 @@ fn refuse_curving_onto_another_model(msh: &Path) {
         other.to_str().unwrap(),
     ]);
     assert_clean_failure(&out, "vertex 0");
-    assert_clean_failure(
-        &loopsurf(&[
+    assert_refused_without_writing(
+        &[
             "curve",
             msh.to_str().unwrap(),
             "--example",
             "viking",
             "-o",
-            "x.obj",
-        ]),
+            "{out}",
+        ],
+        "x.obj",
         "must be .msh or .vtu",
     );
 }

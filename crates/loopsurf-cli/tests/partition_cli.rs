@@ -4,7 +4,7 @@
 mod support;
 
 use std::process::Command;
-use support::{assert_clean_failure, loopsurf, text};
+use support::{assert_clean_failure, assert_refused_without_writing, loopsurf, text};
 
 /// The numbers after each word of a `word n word n ...` line.
 fn fields(line: &str) -> Vec<(String, usize)> {
@@ -71,16 +71,9 @@ fn partition_refuses_bad_part_counts_with_one_line() {
         "K = 5",
     );
     assert_clean_failure(&loopsurf(&["partition", "--example", "tetra"]), "--parts");
-    assert_clean_failure(
-        &loopsurf(&[
-            "partition",
-            "--example",
-            "tetra",
-            "--parts",
-            "2",
-            "-o",
-            "x.obj",
-        ]),
+    assert_refused_without_writing(
+        &["partition", "--example", "tetra", "--parts", "2", "-o", "{out}"],
+        "x.obj",
         ".vtu",
     );
     let one = loopsurf(&["partition", "--example", "tetra", "--parts", "1"]);

@@ -424,7 +424,7 @@ fn curved_files_read_back_exactly() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// meshio (if installed) reads `path` and finds `triangles` triangles.
+/// meshio reads `path` and finds `triangles` triangles.
 fn meshio_reads(path: &std::path::Path, triangles: usize) {
     let script = format!(
         "import meshio, sys\nm = meshio.read(sys.argv[1])\nprint(sum(len(c.data) for c in m.cells if 'triangle' in c.type.lower()))"
@@ -433,13 +433,11 @@ fn meshio_reads(path: &std::path::Path, triangles: usize) {
         .args(["-c", &script, path.to_str().unwrap()])
         .output()
     else {
-        println!("python3 not found: meshio check skipped");
-        return;
+        return meshio_missing("python3 not found");
     };
     let stderr = String::from_utf8_lossy(&out.stderr);
     if stderr.contains("No module named 'meshio'") {
-        println!("meshio not installed: check skipped");
-        return;
+        return meshio_missing("meshio not installed");
     }
     assert!(
         out.status.success(),
@@ -488,4 +486,15 @@ fn bad_input_is_refused_by_name() {
     bad.params[3].v = 2.0;
     let m = message(&bad, 2);
     assert!(m.contains("(v, w) = (2, 1)"), "{m}");
+}
+
+/// A missing python3 or meshio fails the test, as missing data does,
+/// unless `LOOPSURF_SKIP_DATA` asks to skip (and the skip is said).
+/// `scripts/test.sh` installs meshio with pip.
+fn meshio_missing(why: &str) {
+    if std::env::var_os("LOOPSURF_SKIP_DATA").is_some() {
+        println!("{why}: meshio check skipped (LOOPSURF_SKIP_DATA)");
+        return;
+    }
+    panic!("{why}: the meshio check needs it (scripts/test.sh installs it; LOOPSURF_SKIP_DATA=1 skips)");
 }

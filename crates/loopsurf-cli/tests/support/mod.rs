@@ -44,6 +44,18 @@ pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// `args` with `{out}` replaced by a fresh scratch file named `name`:
+/// refused cleanly (as [`assert_clean_failure`]), and nothing written
+/// there. Refusal tests write to scratch paths, never next to the sources.
+pub fn assert_refused_without_writing(args: &[&str], name: &str, needle: &str) {
+    let out = scratch(name);
+    let _ = std::fs::remove_file(&out);
+    let path = out.to_str().unwrap();
+    let args: Vec<&str> = args.iter().map(|&a| if a == "{out}" { path } else { a }).collect();
+    assert_clean_failure(&loopsurf(&args), needle);
+    assert!(!out.exists(), "a refused command wrote {path}");
+}
+
 /// Exit status 2 and exactly one line on stderr that mentions `needle`.
 pub fn assert_clean_failure(out: &Output, needle: &str) {
     let err = text(&out.stderr);
