@@ -72,7 +72,15 @@ fn partition_refuses_bad_part_counts_with_one_line() {
     );
     assert_clean_failure(&loopsurf(&["partition", "--example", "tetra"]), "--parts");
     assert_refused_without_writing(
-        &["partition", "--example", "tetra", "--parts", "2", "-o", "{out}"],
+        &[
+            "partition",
+            "--example",
+            "tetra",
+            "--parts",
+            "2",
+            "-o",
+            "{out}",
+        ],
         "x.obj",
         ".vtu",
     );

@@ -51,7 +51,10 @@ pub fn assert_refused_without_writing(args: &[&str], name: &str, needle: &str) {
     let out = scratch(name);
     let _ = std::fs::remove_file(&out);
     let path = out.to_str().unwrap();
-    let args: Vec<&str> = args.iter().map(|&a| if a == "{out}" { path } else { a }).collect();
+    let args: Vec<&str> = args
+        .iter()
+        .map(|&a| if a == "{out}" { path } else { a })
+        .collect();
     assert_clean_failure(&loopsurf(&args), needle);
     assert!(!out.exists(), "a refused command wrote {path}");
 }
