@@ -8,6 +8,9 @@
 //! sampling of the parametric surface for every shape, and points placed
 //! at known offsets along the true normal.
 
+mod common;
+
+use common::Lcg;
 use loopsurf::cad::{self, Analytic, CapStyle};
 use loopsurf::{DVec3, Surface, SurfaceMode};
 use std::collections::{HashMap, HashSet};
@@ -21,18 +24,6 @@ fn shapes() -> Vec<Box<dyn Analytic>> {
     let mut all = cad::all(CHORD, ANGLE);
     all.push(Box::new(cad::cylinder(CHORD, ANGLE, CapStyle::Zigzag)));
     all
-}
-
-/// A deterministic stream of numbers in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// Points of the true surface on a parameter grid, from the shapes'

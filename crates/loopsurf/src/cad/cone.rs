@@ -1,7 +1,7 @@
 //! A cone with its apex: strips from the base rim to the apex, so the apex
 //! is a fan of slivers, and a sharp rim where the side meets the base disk.
 
-use super::profile::{Piece, Profile, Segment};
+use super::profile::{Piece, Profile};
 use super::revolved::Revolved;
 use glam::DVec2;
 
@@ -15,10 +15,7 @@ pub const CONE_HEIGHT: f64 = 1.5;
 /// and the angle tolerance `angle_degrees`.
 pub fn cone(chord: f64, angle_degrees: f64) -> Revolved {
     let (r, h) = (CONE_RADIUS, CONE_HEIGHT);
-    let line = |a: DVec2, b: DVec2| Piece {
-        segment: Segment::Line { a, b },
-        blend: false,
-    };
+    let line = Piece::line;
     let profile = Profile {
         pieces: vec![
             line(DVec2::ZERO, DVec2::new(r, 0.0)),

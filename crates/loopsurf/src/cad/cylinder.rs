@@ -4,7 +4,7 @@
 //! closed either with a fan at its centre or, as many exporters do, with
 //! a zigzag of its rim points alone.
 
-use super::profile::{Piece, Profile, Segment};
+use super::profile::{Piece, Profile};
 use super::revolved::Revolved;
 use super::tessellate::{angular_steps, revolve, within_chord, zigzag, Ring};
 use crate::examples::Example;
@@ -29,10 +29,7 @@ pub enum CapStyle {
 /// `angle_degrees`, its disks closed as `caps` says.
 pub fn cylinder(chord: f64, angle_degrees: f64, caps: CapStyle) -> Revolved {
     let (r, h) = (CYLINDER_RADIUS, CYLINDER_HEIGHT);
-    let line = |a: DVec2, b: DVec2| Piece {
-        segment: Segment::Line { a, b },
-        blend: false,
-    };
+    let line = Piece::line;
     let profile = Profile {
         pieces: vec![
             line(DVec2::ZERO, DVec2::new(r, 0.0)),

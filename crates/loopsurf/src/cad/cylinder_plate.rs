@@ -24,10 +24,7 @@ pub const BOSS_HEIGHT: f64 = 1.2;
 /// `angle_degrees`.
 pub fn cylinder_plate(chord: f64, angle_degrees: f64) -> Revolved {
     let (rp, rc, f, h) = (PLATE_RADIUS, BOSS_RADIUS, BOSS_FILLET, BOSS_HEIGHT);
-    let line = |a: DVec2, b: DVec2| Piece {
-        segment: Segment::Line { a, b },
-        blend: false,
-    };
+    let line = Piece::line;
     let profile = Profile {
         pieces: vec![
             line(DVec2::new(rp, 0.0), DVec2::new(rc + f, 0.0)),

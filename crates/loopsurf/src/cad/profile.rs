@@ -138,6 +138,16 @@ pub struct Piece {
     pub blend: bool,
 }
 
+impl Piece {
+    /// A straight piece from `a` to `b`, no blend.
+    pub fn line(a: DVec2, b: DVec2) -> Piece {
+        Piece {
+            segment: Segment::Line { a, b },
+            blend: false,
+        }
+    }
+}
+
 /// A connected profile: pieces end to end, open (its ends on the axis, or
 /// free as a boundary) or closed (a torus's tube).
 #[derive(Debug, Clone, PartialEq)]
