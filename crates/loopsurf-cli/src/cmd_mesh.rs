@@ -52,6 +52,11 @@ pub struct Args {
     /// million for the remesher, about 8 GB; 200 million for --charts).
     #[arg(long, value_name = "N")]
     max_triangles: Option<usize>,
+    /// Remesh in K parts of the control net (METIS), each on its own
+    /// core, joined along the interfaces meshed first; the mesh is the
+    /// same for any thread count (RAYON_NUM_THREADS). 1 remeshes whole.
+    #[arg(long, value_name = "K", default_value_t = 1, conflicts_with = "charts")]
+    parts: usize,
     /// Skip the max–min angle edge swaps (--charts).
     #[arg(long)]
     no_swaps: bool,
@@ -131,7 +136,8 @@ fn remesh(args: &Args, surface: &Surface) -> Result<SurfaceMesh, Error> {
     let adapt = args.adapt.is_some() || (args.size.is_none() && args.tolerance.is_none());
     let mut remesher = Remesher::new(surface)
         .adapt_curvature(adapt)
-        .gradation(args.gradation);
+        .gradation(args.gradation)
+        .parts(args.parts);
     if let Some(h) = args.size {
         remesher = remesher.size(h);
     }

@@ -21,7 +21,10 @@ impl Remeshing<'_> {
         let cos_cap = CAP_ANGLE.to_radians().cos();
         let mut done = 0;
         for h in 0..self.mesh.num_half_edges() {
-            if !self.mesh.is_alive(h) || self.mesh.edge_label[h as usize] == NONE {
+            if !self.mesh.is_alive(h)
+                || self.mesh.edge_label[h as usize] == NONE
+                || self.is_frozen(h)
+            {
                 continue;
             }
             let (a, b, v) = (
@@ -29,7 +32,7 @@ impl Remeshing<'_> {
                 self.mesh.dest(h),
                 self.mesh.origin(prev(h)),
             );
-            if !self.vertices[v as usize].is_free() {
+            if !self.vertices[v as usize].is_free() || self.is_pinned(v) {
                 continue;
             }
             let [xa, xb, xv] = [a, b, v].map(|i| self.vertices[i as usize].x);
@@ -99,8 +102,7 @@ impl Remeshing<'_> {
         }
         let size = self.size[v as usize];
         let id = self.mesh.add_vertex();
-        self.vertices.push(m);
-        self.size.push(size);
+        self.push_vertex(m, size);
         self.mesh.split(h, id);
         let Some(e) = self.mesh.find(v, id) else {
             unreachable!("the split joins v to the new vertex");

@@ -58,6 +58,9 @@ impl Remeshing<'_> {
         } else {
             self.mesh.origin(h)
         };
+        if self.is_pinned(remove) {
+            return false;
+        }
         match self.vertices[remove as usize].kind {
             Kind::Corner { .. } => return false,
             Kind::Curve { curve, .. } if label != curve => return false,

@@ -5,15 +5,18 @@ use crate::mesh::SurfaceMesh;
 use crate::topology::NONE;
 
 /// The output: live vertices and triangles compacted, feature edges
-/// ordered by curve and parameter.
-pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> SurfaceMesh {
+/// ordered by curve and parameter; and the pinned id of each output vertex
+/// ([`Remeshing::pinned`]).
+pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> (SurfaceMesh, Vec<u32>) {
     let (triangles, faces, index) = work.mesh.compact();
     let mut points = Vec::with_capacity(triangles.len() / 2 + 2);
     let mut params = Vec::with_capacity(triangles.len() / 2 + 2);
+    let mut pinned = Vec::with_capacity(triangles.len() / 2 + 2);
     for (v, &i) in index.iter().enumerate() {
         if i != NONE {
             points.push(work.vertices[v].x);
             params.push(work.vertices[v].at);
+            pinned.push(work.pinned[v]);
         }
     }
     let mut hard: Vec<(u32, f64, [u32; 2])> = Vec::new();
@@ -39,7 +42,7 @@ pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> SurfaceMesh {
         }
     }
     hard.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
-    SurfaceMesh {
+    let mesh = SurfaceMesh {
         points,
         triangles,
         params,
@@ -49,5 +52,6 @@ pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> SurfaceMesh {
         hard_edge_curves: hard.iter().map(|e| e.0).collect(),
         deviation,
         diagonal: work.placer.surface.net().bbox_diagonal(),
-    }
+    };
+    (mesh, pinned)
 }

@@ -44,6 +44,7 @@ mod collapse;
 mod connectivity;
 mod finish;
 mod flip;
+mod parts;
 mod relax;
 mod remeshing;
 mod renumber;
@@ -121,6 +122,7 @@ pub struct Remesher<'a> {
     adapt: bool,
     gradation: f64,
     max_triangles: usize,
+    parts: usize,
 }
 
 impl<'a> Remesher<'a> {
@@ -133,6 +135,7 @@ impl<'a> Remesher<'a> {
             adapt: false,
             gradation: DEFAULT_GRADATION,
             max_triangles: DEFAULT_MAX_TRIANGLES,
+            parts: 1,
         }
     }
 
@@ -171,10 +174,20 @@ impl<'a> Remesher<'a> {
         self
     }
 
-    /// The size field, the tolerance in model units and the budget,
-    /// checked (a uniform size against the budget too, before the start
-    /// mesh is built).
-    fn sizing(&self) -> Result<(Sizing, Option<f64>, Budget)> {
+    /// Mesh the surface in `k` parts of its control net, each on its own
+    /// ([`parts`]): the parts run in parallel, and the mesh is the same
+    /// bits for any thread count. 1 (the default) meshes it whole.
+    pub fn parts(mut self, k: usize) -> Self {
+        self.parts = k;
+        self
+    }
+
+    /// The size field over `surface` (the whole surface, or one part's),
+    /// the tolerance in model units and the budget, checked (a uniform
+    /// size against the budget too, before the start mesh is built). The
+    /// tolerance and the default cap are relative to the whole surface's
+    /// diagonal.
+    fn sizing_on(&self, surface: &Surface) -> Result<(Sizing, Option<f64>, Budget)> {
         let bad = |m: String| Err(Error::InvalidArgument(m));
         let diagonal = self.surface.net().bbox_diagonal();
         if let Some(h) = self.size {
@@ -198,7 +211,7 @@ impl<'a> Remesher<'a> {
             // splits the alignment check refused.
             (size, _, Some(tol)) => {
                 let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
-                Sizing::curvature(self.surface, tol, cap, cap * 1e-3, self.gradation)
+                Sizing::curvature(surface, tol, cap, cap * 1e-3, self.gradation)
             }
             (None, _, None) => {
                 return bad(
@@ -219,25 +232,49 @@ impl<'a> Remesher<'a> {
     /// measured, and where it is missed the sizes shrunk and the rounds
     /// and polish run again ([`tolerance`]).
     pub fn run(&self) -> Result<SurfaceMesh> {
-        let (sizing, tolerance, budget) = self.sizing()?;
-        let chart = start::chart_mesh(self.surface, &sizing, tolerance, &budget)?;
-        let mut work = start::start_from(self.surface, &chart)?;
-        let mut shrinking = Shrinking::new(self.surface.net().triangles().len());
-        let mut deviation = None;
-        for round in 0..=TOLERANCE_ROUNDS {
-            remesh_rounds(&mut work, &sizing, shrinking.factors(), &budget, round == 0)?;
-            polish(&mut work);
-            let Some(tol) = tolerance else { break };
-            let errors = chord_errors(&work, tol);
-            let worst = errors.iter().map(|e| e.1).fold(0.0, f64::max);
-            deviation = Some(worst);
-            if worst <= tol || round == TOLERANCE_ROUNDS {
-                break;
+        match self.parts {
+            0 => Err(Error::InvalidArgument(
+                "0 parts: remesh in at least 1".into(),
+            )),
+            1 => {
+                let (sizing, tolerance, budget) = self.sizing_on(self.surface)?;
+                let largest = sizing.largest(|_| true);
+                let chart = start::chart_mesh(self.surface, largest, sizing.adapts_to(), &budget)?;
+                let placer = vertices::Placer::new(self.surface);
+                let mut work = start::start_from(placer, &chart)?;
+                let deviation = remesh(&mut work, &sizing, tolerance, &budget)?;
+                Ok(finish::finish(&work, deviation).0)
             }
-            shrinking.shrink_where_missed(&work, &errors, tol);
+            k => parts::run(self, k),
         }
-        Ok(finish::finish(&work, deviation))
     }
+}
+
+/// Remeshes `work`: rounds of the passes and a polish; then, under a
+/// tolerance, the chord error measured, and where it is missed the sizes
+/// shrunk and the rounds and polish run again. Returns the largest chord
+/// error measured (under a tolerance).
+fn remesh(
+    work: &mut Remeshing,
+    sizing: &Sizing,
+    tolerance: Option<f64>,
+    budget: &Budget,
+) -> Result<Option<f64>> {
+    let mut shrinking = Shrinking::new(work.placer.surface.net().triangles().len());
+    let mut deviation = None;
+    for round in 0..=TOLERANCE_ROUNDS {
+        remesh_rounds(work, sizing, shrinking.factors(), budget, round == 0)?;
+        polish(work);
+        let Some(tol) = tolerance else { break };
+        let errors = chord_errors(work, tol);
+        let worst = errors.iter().map(|e| e.1).fold(0.0, f64::max);
+        deviation = Some(worst);
+        if worst <= tol || round == TOLERANCE_ROUNDS {
+            break;
+        }
+        shrinking.shrink_where_missed(work, &errors, tol);
+    }
+    Ok(deviation)
 }
 
 /// [`ROUNDS`] rounds of the passes at the sizes `sizing` gives, shrunk by

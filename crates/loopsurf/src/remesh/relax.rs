@@ -77,7 +77,7 @@ impl Remeshing<'_> {
 
     /// Where relaxation would put vertex v, if anywhere.
     fn relaxed(&self, v: u32) -> Option<Vertex> {
-        if !self.mesh.is_vertex_alive(v) {
+        if !self.mesh.is_vertex_alive(v) || self.is_pinned(v) {
             return None;
         }
         let vertex = &self.vertices[v as usize];

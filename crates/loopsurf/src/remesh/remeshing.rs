@@ -19,6 +19,10 @@ pub(crate) struct Remeshing<'a> {
     pub mesh: Connectivity,
     pub vertices: Vec<Vertex>,
     pub size: Vec<f64>,
+    /// Per vertex: the id it keeps in the whole mesh if it is pinned (a
+    /// vertex on an interface between parts, which both sides share and
+    /// neither may move or remove), else [`NONE`].
+    pub pinned: Vec<u32>,
     /// [`Connectivity::can_collapse`]'s work space, kept between calls.
     pub(super) scratch: [Vec<u32>; 2],
 }
@@ -29,11 +33,13 @@ pub(super) type Moved<'v> = Option<(u32, &'v Vertex)>;
 impl<'a> Remeshing<'a> {
     pub fn new(placer: Placer<'a>, mesh: Connectivity, vertices: Vec<Vertex>) -> Remeshing<'a> {
         let size = vec![f64::INFINITY; vertices.len()];
+        let pinned = vec![NONE; vertices.len()];
         Remeshing {
             placer,
             mesh,
             vertices,
             size,
+            pinned,
             scratch: [Vec::new(), Vec::new()],
         }
     }
@@ -43,6 +49,26 @@ impl Remeshing<'_> {
     /// The target length of edge a–b: the mean of its ends' sizes.
     pub(super) fn target(&self, a: u32, b: u32) -> f64 {
         0.5 * (self.size[a as usize] + self.size[b as usize])
+    }
+
+    /// Whether v is pinned (see [`Remeshing::pinned`]).
+    pub(super) fn is_pinned(&self, v: u32) -> bool {
+        self.pinned[v as usize] != NONE
+    }
+
+    /// Whether h's edge is frozen: a border edge between two pinned
+    /// vertices, an interface between parts that both sides mesh alike.
+    pub(super) fn is_frozen(&self, h: u32) -> bool {
+        self.mesh.opposite(h) == NONE
+            && self.is_pinned(self.mesh.origin(h))
+            && self.is_pinned(self.mesh.dest(h))
+    }
+
+    /// Appends a new (unpinned) vertex of target size `size`.
+    pub(super) fn push_vertex(&mut self, v: Vertex, size: f64) {
+        self.vertices.push(v);
+        self.size.push(size);
+        self.pinned.push(NONE);
     }
 
     /// The position of v, or of its new state if it is the one `moved`.

@@ -35,6 +35,7 @@ impl Remeshing<'_> {
         self.mesh.renumber(&order);
         self.vertices = order.iter().map(|&v| self.vertices[v as usize]).collect();
         self.size = order.iter().map(|&v| self.size[v as usize]).collect();
+        self.pinned = order.iter().map(|&v| self.pinned[v as usize]).collect();
     }
 }
 

@@ -21,7 +21,7 @@ impl Remeshing<'_> {
             .into_par_iter()
             .map(|v| {
                 let vertex = &self.vertices[v as usize];
-                if !self.mesh.is_vertex_alive(v) || !vertex.is_free() {
+                if !self.mesh.is_vertex_alive(v) || !vertex.is_free() || self.is_pinned(v) {
                     return None;
                 }
                 let face = self.face(self.mesh.outgoing(v).next()?);

@@ -166,13 +166,26 @@ impl Sizing {
         }
     }
 
-    /// The largest size anywhere (the cap of curvature sizing).
-    pub fn largest(&self) -> f64 {
+    /// The largest size of the control triangles `keep` lets through
+    /// (at most the cap of curvature sizing).
+    pub fn largest(&self, keep: impl Fn(usize) -> bool) -> f64 {
         match self {
             Sizing::Uniform(h) => *h,
-            Sizing::Curvature { per_triangle, .. } => {
-                per_triangle.iter().copied().fold(0.0, f64::max)
-            }
+            Sizing::Curvature { per_triangle, .. } => per_triangle
+                .iter()
+                .enumerate()
+                .filter(|&(t, _)| keep(t))
+                .map(|(_, &h)| h)
+                .fold(0.0, f64::max),
+        }
+    }
+
+    /// The chord tolerance that curvature sizing sizes under (model
+    /// units); `None` for a uniform size.
+    pub fn adapts_to(&self) -> Option<f64> {
+        match self {
+            Sizing::Uniform(_) => None,
+            Sizing::Curvature { tolerance, .. } => Some(*tolerance),
         }
     }
 

@@ -41,6 +41,7 @@ impl Remeshing<'_> {
                 .filter(|&h| {
                     let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
                     self.length(h) > SPLIT_ABOVE * self.target(a, b)
+                        && !self.is_frozen(h)
                         && !refused.contains(&self.edge_key(h))
                 })
                 .map(|h| (self.mesh.origin(h), self.mesh.dest(h)))
@@ -74,8 +75,8 @@ impl Remeshing<'_> {
                 };
                 if let Some(m) = m {
                     let id = self.mesh.add_vertex();
-                    self.vertices.push(m);
-                    self.size.push(self.target(a, b));
+                    let size = self.target(a, b);
+                    self.push_vertex(m, size);
                     self.mesh.split(h, id);
                     done += 1;
                 } else {

@@ -5,7 +5,6 @@
 use super::budget::Budget;
 use super::connectivity::Connectivity;
 use super::remeshing::Remeshing;
-use super::sizing::Sizing;
 use super::vertices::{Kind, Placer, Vertex};
 use crate::error::{Error, Result};
 use crate::mesh::{Density, Mesher, SurfaceMesh};
@@ -15,22 +14,23 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
-/// The chart mesh at the largest size of `sizing`. Under a tolerance it
-/// starts adapted, unless the chart mesher cannot meet it (its own
-/// measure, in parameters, can stall where the remesher's sizes do not):
-/// then from the largest size alone.
+/// The chart mesh at size `largest` (the largest the size field asks
+/// for). Under curvature sizing (`adapt_to`, its chord tolerance in model
+/// units) it starts adapted, unless the chart mesher cannot meet the
+/// tolerance (its own measure, in parameters, can stall where the
+/// remesher's sizes do not): then from the largest size alone.
 pub(super) fn chart_mesh(
     surface: &Surface,
-    sizing: &Sizing,
-    tolerance: Option<f64>,
+    largest: f64,
+    adapt_to: Option<f64>,
     budget: &Budget,
 ) -> Result<SurfaceMesh> {
     let plain = Mesher::new(surface)
-        .density(Density::Size(sizing.largest()))
+        .density(Density::Size(largest))
         .max_triangles(budget.start_allowance())
         .swaps(false);
-    match (sizing, tolerance) {
-        (Sizing::Curvature { .. }, Some(tol)) => {
+    match adapt_to {
+        Some(tol) => {
             let diagonal = surface.net().bbox_diagonal();
             plain
                 .clone()
@@ -39,15 +39,16 @@ pub(super) fn chart_mesh(
                 .run()
                 .or_else(|_| plain.run())
         }
-        _ => plain.run(),
+        None => plain.run(),
     }
     .map_err(|e| e.during(budget.start_context()))
 }
 
 /// The remesher's start from a chart mesh: vertex kinds from the mesh's
-/// curve edges and the model's corners.
-pub(super) fn start_from<'a>(surface: &'a Surface, start: &SurfaceMesh) -> Result<Remeshing<'a>> {
-    let placer = Placer::new(surface);
+/// curve edges and the model's corners. Its vertices move as `placer`
+/// lets them.
+pub(super) fn start_from<'a>(placer: Placer<'a>, start: &SurfaceMesh) -> Result<Remeshing<'a>> {
+    let surface = placer.surface;
     let model = surface.model();
     let net = surface.net();
     let curve_edges = start.curve_edges(surface)?;

@@ -11,7 +11,9 @@
 use crate::error::Result;
 use crate::parameters::{self, vertex_in, SurfacePoint};
 use crate::surface::Surface;
+use crate::topology::NONE;
 use glam::DVec3;
+use std::borrow::Cow;
 
 /// Halvings of [`Placer::balanced_on_curve`]'s search: the curve vertex
 /// lands within 2⁻²⁰ of its span from the balance point, far below what
@@ -53,14 +55,30 @@ impl Vertex {
 /// The surface and model queries the remesher moves vertices with.
 pub(crate) struct Placer<'a> {
     pub surface: &'a Surface,
-    face_of: &'a [u32],
+    /// The model face of each control triangle a vertex may land in,
+    /// [`NONE`] for one it may not.
+    face_of: Cow<'a, [u32]>,
 }
 
 impl<'a> Placer<'a> {
     pub fn new(surface: &'a Surface) -> Placer<'a> {
         Placer {
             surface,
-            face_of: surface.model().face_of_triangle(),
+            face_of: Cow::Borrowed(surface.model().face_of_triangle()),
+        }
+    }
+
+    /// A placer whose vertices land only in the control triangles `keep`
+    /// lets through (in a part's sub-net, those that evaluate as in the
+    /// whole).
+    pub fn within(surface: &'a Surface, keep: impl Fn(usize) -> bool) -> Placer<'a> {
+        let faces = surface.model().face_of_triangle();
+        let face_of = (0..faces.len())
+            .map(|t| if keep(t) { faces[t] } else { NONE })
+            .collect();
+        Placer {
+            surface,
+            face_of: Cow::Owned(face_of),
         }
     }
 
