@@ -1,7 +1,8 @@
 //! `--parts K --part P` as a user runs it: `eval` on one part answers its
 //! owned triangles with the bytes `eval` on the whole net writes, refuses a
 //! triangle another part owns naming the owner, and `info` prints the
-//! part's line; bad input is one clear line, exit 2, nothing on stdout.
+//! part's line; `mesh --parts K` writes the same file on one thread and
+//! on two; bad input is one clear line, exit 2, nothing on stdout.
 
 mod support;
 
@@ -163,4 +164,37 @@ fn bad_part_requests_are_one_line_and_write_nothing() {
     let out = loopsurf(&args);
     assert_clean_failure(&out, "part 5: out of range");
     assert!(out.stdout.is_empty());
+}
+
+/// `mesh --parts K` writes one mesh, the same file on one thread and on
+/// two; `--parts 0` and more parts than control triangles are refused,
+/// writing nothing.
+#[test]
+fn mesh_in_parts_writes_one_mesh_whatever_the_threads() {
+    let mut written = Vec::new();
+    for threads in ["1", "2"] {
+        let out = scratch(&format!("parts-{threads}.obj"));
+        let path = out.to_str().unwrap();
+        let mut args = vec!["mesh"];
+        args.extend(VIKING);
+        args.extend(["--size", "0.08", "--parts", "3", "--no-verify", "-o", path]);
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_loopsurf"))
+            .args(&args)
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        written.push(std::fs::read(&out).unwrap());
+    }
+    assert!(!written[0].is_empty());
+    assert!(
+        written[0] == written[1],
+        "the mesh differs on 1 and 2 threads"
+    );
+    for (k, needle) in [("0", "0 parts"), ("1681", "K = 1681")] {
+        let mut args = vec!["mesh"];
+        args.extend(VIKING);
+        args.extend(["--size", "0.08", "--parts", k, "-o", "{out}"]);
+        support::assert_refused_without_writing(&args, &format!("refused-{k}.obj"), needle);
+    }
 }

@@ -97,3 +97,19 @@ pub fn chord_error_between_probes(
         })
         .reduce(|| (0.0, 0), |x, y| if y.0 > x.0 { y } else { x })
 }
+
+/// The smallest distance between two vertices of `points` (a sweep along x).
+pub fn closest_vertices(points: &[DVec3]) -> f64 {
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x));
+    let mut closest = f64::INFINITY;
+    for i in 0..sorted.len() {
+        for q in &sorted[i + 1..] {
+            if q.x - sorted[i].x > closest {
+                break;
+            }
+            closest = closest.min(sorted[i].distance(*q));
+        }
+    }
+    closest
+}

@@ -20,22 +20,6 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// The smallest distance between two vertices of `points` (a sweep along x).
-fn closest_vertices(points: &[DVec3]) -> f64 {
-    let mut sorted = points.to_vec();
-    sorted.sort_by(|a, b| a.x.total_cmp(&b.x));
-    let mut closest = f64::INFINITY;
-    for i in 0..sorted.len() {
-        for q in &sorted[i + 1..] {
-            if q.x - sorted[i].x > closest {
-                break;
-            }
-            closest = closest.min(sorted[i].distance(*q));
-        }
-    }
-    closest
-}
-
 /// `net` remeshed adapted (default tolerance) and at the size `h`: no two
 /// vertices nearer than 1e-6 h, every edge at least a quarter of `h` at
 /// the size, and no angle below 20°.
@@ -46,7 +30,7 @@ fn check_remeshes(name: &str, net: &ControlNet) {
     let adapted = Remesher::new(&surface).adapt_curvature(true).run().unwrap();
     for (what, mesh, shortest) in [("size", &sized, 0.25 * h), ("adapted", &adapted, 1e-6 * h)] {
         let q = SurfaceMesh::quality(mesh);
-        let closest = closest_vertices(&mesh.points);
+        let closest = common::closest_vertices(&mesh.points);
         println!(
             "{name}, {what}: {} triangles, closest vertices {:.3e} h, shortest edge {:.3e} h, min {:.2}°",
             mesh.triangles.len(),

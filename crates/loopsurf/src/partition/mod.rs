@@ -94,8 +94,33 @@ pub fn partition_with(net: &ControlNet, k: usize, opts: &PartitionOptions) -> Re
     let part = if k == 1 {
         vec![0; n]
     } else {
-        metis_parts(topo, k, opts.seed)?
+        metis_parts(topo, k, opts.seed, None)?
     };
+    Ok(Partition::from_parts(topo, part, k))
+}
+
+/// How much more a cut next to a triangle that [`partition_avoiding`]
+/// avoids costs than one elsewhere.
+const AVOIDED_CUT: i32 = 100;
+
+/// [`partition`] with cuts next to the triangles `avoid` marks made
+/// [`AVOIDED_CUT`] times dearer (METIS's edge weights), so the parts'
+/// interfaces run elsewhere where they can: a second partition whose
+/// interfaces keep away from a first one's.
+pub(crate) fn partition_avoiding(net: &ControlNet, k: usize, avoid: &[bool]) -> Result<Partition> {
+    let topo = net.topology();
+    let n = topo.num_triangles();
+    if k <= 1 || k > n {
+        return partition(net, k);
+    }
+    let weight = |a: u32, b: u32| {
+        if avoid[a as usize] || avoid[b as usize] {
+            AVOIDED_CUT
+        } else {
+            1
+        }
+    };
+    let part = metis_parts(topo, k, PartitionOptions::default().seed, Some(&weight))?;
     Ok(Partition::from_parts(topo, part, k))
 }
 
@@ -169,7 +194,12 @@ fn is_connected(start: &[u32], adj: &[u32]) -> bool {
 /// METIS k-way on the dual graph. A part over [`max_part_size`] is evened
 /// out by moving border triangles ([`rebalance`]); if that fails, METIS is
 /// asked again with a tighter imbalance.
-fn metis_parts(topo: &Topology, k: usize, seed: i32) -> Result<Vec<u32>> {
+fn metis_parts(
+    topo: &Topology,
+    k: usize,
+    seed: i32,
+    weight: Option<&dyn Fn(u32, u32) -> i32>,
+) -> Result<Vec<u32>> {
     let (start, adj) = dual_graph(topo);
     let too_large = || {
         Error::InvalidArgument(format!(
@@ -183,13 +213,19 @@ fn metis_parts(topo: &Topology, k: usize, seed: i32) -> Result<Vec<u32>> {
         .collect::<Result<_, _>>()
         .map_err(|_| too_large())?;
     let adjncy: Vec<i32> = adj.iter().map(|&x| x as i32).collect();
+    let adjwgt: Option<Vec<i32>> = weight.map(|w| {
+        (0..start.len() - 1)
+            .flat_map(|t| (start[t]..start[t + 1]).map(move |i| (t as u32, i)))
+            .map(|(t, i)| w(t, adj[i as usize]))
+            .collect()
+    });
     // METIS refuses (and prints) a contiguity request on a disconnected graph.
     let contig = is_connected(&start, &adj);
     let n = topo.num_triangles();
     let limit = max_part_size(n, k);
     let mut largest = 0;
     for ufactor in UFACTORS {
-        let mut part = run_metis(&xadj, &adjncy, k, seed, ufactor, contig)?;
+        let mut part = run_metis(&xadj, &adjncy, adjwgt.as_deref(), k, seed, ufactor, contig)?;
         largest = largest_part(&part, k);
         if largest <= limit || rebalance::rebalance(&start, &adj, &mut part, k, limit, contig) {
             return Ok(part);
@@ -212,6 +248,7 @@ fn largest_part(part: &[u32], k: usize) -> usize {
 fn run_metis(
     xadj: &[i32],
     adjncy: &[i32],
+    adjwgt: Option<&[i32]>,
     k: usize,
     seed: i32,
     ufactor: i32,
@@ -219,7 +256,10 @@ fn run_metis(
 ) -> Result<Vec<u32>> {
     let mut part = vec![0i32; xadj.len() - 1];
     let fail = |e: &dyn std::fmt::Display| Error::InvalidArgument(format!("METIS: {e}"));
-    let graph = metis::Graph::new(1, k as i32, xadj, adjncy).map_err(|e| fail(&e))?;
+    let mut graph = metis::Graph::new(1, k as i32, xadj, adjncy).map_err(|e| fail(&e))?;
+    if let Some(w) = adjwgt {
+        graph = graph.set_adjwgt(w);
+    }
     let graph = graph
         .set_option(metis::option::Seed(seed))
         .set_option(metis::option::UFactor(ufactor))

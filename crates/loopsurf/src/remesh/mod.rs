@@ -24,6 +24,11 @@
 //! along a curve are kept (split along the curve, collapsed only along it,
 //! never flipped), so every triangle keeps its model face.
 //!
+//! In parts ([`Remesher::parts`], [`parts`]) each part of a METIS
+//! partition of the control net is remeshed alone on its own sub-net's
+//! surface, its interface vertices pinned, then the band around the
+//! interfaces once more over a second partition that avoids them.
+//!
 //! The size is one length, or from the exact principal curvatures under a
 //! chord tolerance, capped and graded ([`sizing`]). With a tolerance the
 //! chord error is measured afterwards at every centroid and edge midpoint

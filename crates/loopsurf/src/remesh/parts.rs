@@ -12,6 +12,17 @@
 //! alone, and the pieces join on the pinned vertices with no further
 //! exchange.
 //!
+//! **Then the interfaces are moved, as ParMmg does.** Next to a pinned
+//! interface the first pass leaves a trace: the start's vertices there,
+//! copied from the control net's shapes, never moved. A second partition,
+//! whose cuts METIS is told to keep away from the first one's, cuts the
+//! joined mesh again (each triangle to the part most of its vertices'
+//! control triangles are in). Each part remeshes its piece once more with
+//! its new interface pinned, and so are the vertices farther than
+//! [`BAND_RINGS`] edges from an old interface, which are done: only the
+//! band around the old interfaces moves. The new interfaces run through
+//! vertices the first pass has already placed well.
+//!
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
 //! triangles sharing a vertex with them (where a vertex next to the
@@ -36,62 +47,146 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
+/// The second pass remeshes the vertices within this many edges of a
+/// first-pass interface.
+const BAND_RINGS: usize = 4;
+
+/// The second partition avoids cutting the control triangles within this
+/// many vertex rings of a first-pass interface vertex.
+const AVOID_RINGS: usize = 2;
+
 /// One part being remeshed: its sub-net's surface and its sizes.
 struct PartWork {
     part: Part,
     surface: Surface,
     /// Per local triangle: whether the part owns it.
     owned: Vec<bool>,
-    /// Per local triangle: whether it evaluates as in the whole (the
-    /// owned ones and those sharing a vertex with them), where vertices
-    /// may land.
-    exact: Vec<bool>,
+    /// Per local triangle: its face in the whole.
+    whole_face: Vec<u32>,
     sizing: Sizing,
     tolerance: Option<f64>,
     budget: Budget,
 }
 
-/// One part's piece of the mesh: local parameters and faces, and each
-/// vertex's pinned id (its index in the start) or [`NONE`].
+/// One part's piece of the mesh: local parameters, and each vertex's
+/// pinned id (its index in the start) or [`NONE`].
 struct Piece {
     mesh: SurfaceMesh,
     pinned: Vec<u32>,
+}
+
+/// The pieces joined: the mesh, and per vertex its index in the start
+/// it was pinned to, or [`NONE`].
+struct Joined {
+    mesh: SurfaceMesh,
+    from: Vec<u32>,
 }
 
 /// [`Remesher::run`] in `k` parts (see the module doc).
 pub(super) fn run(remesher: &Remesher, k: usize) -> Result<SurfaceMesh> {
     let surface = remesher.surface;
     let net = surface.net();
-    let partition = partition::partition(net, k)?;
-    let works: Vec<PartWork> = (0..k)
-        .into_par_iter()
-        .map(|p| PartWork::new(remesher, &partition, p))
-        .collect::<Result<_>>()?;
-    let first = &works[0];
+    // The first pass: the chart mesh cut along the control edges between
+    // parts.
+    let first = partition::partition(net, k)?;
+    let works = part_works(remesher, &first, |_| Vec::new())?;
     let largest = works
         .iter()
         .map(|w| w.sizing.largest(|t| w.owned[t]))
         .fold(0.0, f64::max);
-    let chart = start::chart_mesh(surface, largest, first.sizing.adapts_to(), &first.budget)?;
+    let (adapt_to, budget) = (works[0].sizing.adapts_to(), &works[0].budget);
+    let chart = start::chart_mesh(surface, largest, adapt_to, budget)?;
     let owner: Vec<u32> = chart
         .charts
         .iter()
-        .map(|&c| partition.parts()[c as usize])
+        .map(|&c| first.parts()[c as usize])
         .collect();
-    let shared = shared_vertices(&chart, &owner);
+    let shared = shared_vertices(&chart.triangles, &owner, chart.points.len());
+    let pins = (0..chart.points.len() as u32)
+        .map(|v| if shared[v as usize] { v } else { NONE })
+        .collect::<Vec<_>>();
+    let pass = remesh_pieces(surface, &works, &chart, &owner, &pins)?;
+    drop(works);
+    // The second: the joined mesh cut along a partition that keeps away
+    // from the first one's interfaces, only the band around them free.
+    let mesh = &pass.mesh;
+    let old: Vec<bool> = pass
+        .from
+        .iter()
+        .map(|&g| g != NONE && shared[g as usize])
+        .collect();
+    let avoid = control_rings(
+        net,
+        mesh.params
+            .iter()
+            .zip(&old)
+            .filter(|x| *x.1)
+            .map(|x| x.0.tri),
+        AVOID_RINGS,
+    );
+    let second = partition::partition_avoiding(net, k, &avoid)?;
+    let owner: Vec<u32> = mesh
+        .triangles
+        .iter()
+        .map(|tri| majority(tri.map(|v| second.parts()[mesh.params[v as usize].tri as usize])))
+        .collect();
+    let shared = shared_vertices(&mesh.triangles, &owner, mesh.points.len());
+    let band = mesh_rings(&mesh.triangles, &old, BAND_RINGS);
+    let pins: Vec<u32> = (0..mesh.points.len() as u32)
+        .map(|v| {
+            if shared[v as usize] || !band[v as usize] {
+                v
+            } else {
+                NONE
+            }
+        })
+        .collect();
+    let mut touched: Vec<Vec<u32>> = vec![Vec::new(); k];
+    for (tri, &p) in mesh.triangles.iter().zip(&owner) {
+        touched[p as usize].extend(tri.map(|v| mesh.params[v as usize].tri));
+    }
+    let works = part_works(remesher, &second, |p| std::mem::take(&mut touched[p]))?;
+    Ok(remesh_pieces(surface, &works, mesh, &owner, &pins)?.mesh)
+}
+
+/// Each part of `partition` ready to remesh, its sub-net also holding the
+/// control triangles `extra(p)` (where its start's vertices lie).
+fn part_works(
+    remesher: &Remesher,
+    partition: &Partition,
+    mut extra: impl FnMut(usize) -> Vec<u32>,
+) -> Result<Vec<PartWork>> {
+    let extras: Vec<Vec<u32>> = (0..partition.num_parts()).map(&mut extra).collect();
+    extras
+        .into_par_iter()
+        .enumerate()
+        .map(|(p, extra)| PartWork::new(remesher, partition, p, &extra))
+        .collect()
+}
+
+/// The pieces of `start` (triangle t in part `owner[t]`) remeshed, each
+/// on its part, vertex v pinned where `pins[v]` is not [`NONE`], and
+/// joined.
+fn remesh_pieces(
+    surface: &Surface,
+    works: &[PartWork],
+    start: &SurfaceMesh,
+    owner: &[u32],
+    pins: &[u32],
+) -> Result<Joined> {
     let pieces: Vec<Piece> = works
         .par_iter()
         .enumerate()
-        .map(|(p, work)| work.remesh(&chart, &owner, &shared, p as u32))
+        .map(|(p, work)| work.remesh(start, owner, pins, p as u32))
         .collect::<Result<_>>()?;
-    join(surface, &works, &pieces)
+    join(surface, works, &pieces)
 }
 
-/// Per vertex of the start: whether triangles of more than one part use it.
-fn shared_vertices(chart: &SurfaceMesh, owner: &[u32]) -> Vec<bool> {
-    let mut first = vec![NONE; chart.points.len()];
-    let mut shared = vec![false; chart.points.len()];
-    for (tri, &p) in chart.triangles.iter().zip(owner) {
+/// Per vertex of a mesh: whether triangles of more than one part use it.
+fn shared_vertices(triangles: &[[u32; 3]], owner: &[u32], n: usize) -> Vec<bool> {
+    let mut first = vec![NONE; n];
+    let mut shared = vec![false; n];
+    for (tri, &p) in triangles.iter().zip(owner) {
         for &v in tri {
             match first[v as usize] {
                 NONE => first[v as usize] = p,
@@ -103,14 +198,114 @@ fn shared_vertices(chart: &SurfaceMesh, owner: &[u32]) -> Vec<bool> {
     shared
 }
 
+/// The part most of a triangle's three votes name (the first vote's
+/// when all differ).
+fn majority([a, b, c]: [u32; 3]) -> u32 {
+    if b == c {
+        b
+    } else {
+        a
+    }
+}
+
+/// Per mesh vertex: whether it lies within `rings` edges of a vertex
+/// `seed` marks.
+fn mesh_rings(triangles: &[[u32; 3]], seed: &[bool], rings: usize) -> Vec<bool> {
+    let mut near = seed.to_vec();
+    for _ in 0..rings {
+        let mut next = near.clone();
+        for tri in triangles {
+            if tri.iter().any(|&v| near[v as usize]) {
+                for &v in tri {
+                    next[v as usize] = true;
+                }
+            }
+        }
+        near = next;
+    }
+    near
+}
+
+/// Per corner (3 per triangle) of a set of triangles: the fan it belongs
+/// to, named by one of the fan's corners. Two corners at one vertex are in
+/// one fan when a chain of triangles sharing edges at that vertex joins
+/// them.
+fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
+    let mut class: Vec<usize> = (0..3 * triangles.len()).collect();
+    fn root(class: &mut [usize], mut c: usize) -> usize {
+        while class[c] != c {
+            class[c] = class[class[c]];
+            c = class[c];
+        }
+        c
+    }
+    let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            // The corners of a and b in this triangle.
+            let (ca, cb) = (3 * t + k, 3 * t + (k + 1) % 3);
+            match edges.remove(&(b, a)) {
+                // The neighbour across runs b → a: its corner at b, then a.
+                Some(other) => {
+                    let (ob, oa) = (other, 3 * (other / 3) + (other % 3 + 1) % 3);
+                    for (x, y) in [(ca, oa), (cb, ob)] {
+                        let (rx, ry) = (root(&mut class, x), root(&mut class, y));
+                        class[rx.max(ry)] = rx.min(ry);
+                    }
+                }
+                None => {
+                    edges.insert((a, b), ca);
+                }
+            }
+        }
+    }
+    (0..class.len()).map(|c| root(&mut class, c)).collect()
+}
+
+/// Per control triangle: whether it lies within `rings` vertex rings of
+/// one of the triangles `seeds`.
+fn control_rings(
+    net: &crate::ControlNet,
+    seeds: impl Iterator<Item = u32>,
+    rings: usize,
+) -> Vec<bool> {
+    let topo = net.topology();
+    let mut near = vec![false; net.triangles().len()];
+    let mut front: Vec<u32> = seeds.collect();
+    for t in &front {
+        near[*t as usize] = true;
+    }
+    for _ in 0..rings {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &v in &net.triangles()[t as usize] {
+                for &u in topo.fan(v as usize) {
+                    if !near[u as usize] {
+                        near[u as usize] = true;
+                        next.push(u);
+                    }
+                }
+            }
+        }
+        front = next;
+    }
+    near
+}
+
 impl PartWork {
-    /// Part `p`: its triangles and those sharing a vertex with them as a
-    /// sub-net, its surface and its sizes.
-    fn new(remesher: &Remesher, partition: &Partition, p: usize) -> Result<PartWork> {
+    /// Part `p`: its triangles, the triangles `extra`, and those sharing a
+    /// vertex with either as a sub-net, its surface and its sizes.
+    fn new(
+        remesher: &Remesher,
+        partition: &Partition,
+        p: usize,
+        extra: &[u32],
+    ) -> Result<PartWork> {
         let net = remesher.surface.net();
         let topo = net.topology();
         let mut near = vec![false; net.triangles().len()];
-        for &t in partition.triangles(p) {
+        for &t in partition.triangles(p).iter().chain(extra) {
             for &v in &net.triangles()[t as usize] {
                 for &u in topo.fan(v as usize) {
                     near[u as usize] = true;
@@ -126,8 +321,11 @@ impl PartWork {
             .iter()
             .map(|&g| partition.parts()[g as usize] == p as u32)
             .collect();
-        let exact = (0..part.global_triangles().len())
-            .map(|t| part.is_owned(t))
+        let faces = remesher.surface.model().face_of_triangle();
+        let whole_face = part
+            .global_triangles()
+            .iter()
+            .map(|&g| faces[g as usize])
             .collect();
         let surface = Surface::new(part.net())?;
         let (sizing, tolerance, budget) = remesher.sizing_on(&surface)?;
@@ -135,74 +333,76 @@ impl PartWork {
             part,
             surface,
             owned,
-            exact,
+            whole_face,
             sizing,
             tolerance,
             budget,
         })
     }
 
-    /// Remeshes part `p`'s piece of the start `chart` (whose triangle t
-    /// part `owner[t]` owns), its `shared` vertices pinned.
-    fn remesh(&self, chart: &SurfaceMesh, owner: &[u32], shared: &[bool], p: u32) -> Result<Piece> {
-        let (start, ids) = self.start_piece(chart, owner, p)?;
-        let placer = Placer::within(&self.surface, |t| self.exact[t]);
-        let mut work = start::start_from(placer, &start)?;
+    /// Remeshes part `p`'s piece of `start` (whose triangle t part
+    /// `owner[t]` owns), vertex v pinned where `pins[v]` is not [`NONE`].
+    /// Vertices land only in the triangles that evaluate as in the whole
+    /// (the part's [`Part`] owns them).
+    fn remesh(&self, start: &SurfaceMesh, owner: &[u32], pins: &[u32], p: u32) -> Result<Piece> {
+        let (piece, ids) = self.start_piece(start, owner, p)?;
+        let placer = Placer::within(&self.surface, &self.whole_face, |t| self.part.is_owned(t));
+        let mut work = start::start_from(placer, &piece)?;
         for (i, &g) in ids.iter().enumerate() {
-            if shared[g as usize] {
-                work.pinned[i] = g;
-            }
+            work.pinned[i] = pins[g as usize];
         }
         let deviation = remesh(&mut work, &self.sizing, self.tolerance, &self.budget)?;
         let (mesh, pinned) = finish(&work, deviation);
         Ok(Piece { mesh, pinned })
     }
 
-    /// Part `p`'s triangles of the start in local terms, and the start's
-    /// id of each of its vertices.
+    /// Part `p`'s triangles of `start` in local terms (faces stay the
+    /// whole's), and the start's id of each of its vertices. Where the
+    /// piece's triangles at a vertex form several fans (the piece touches
+    /// itself there), each fan has its own copy; such a vertex is on an
+    /// interface, pinned, and the copies join again.
     fn start_piece(
         &self,
-        chart: &SurfaceMesh,
+        start: &SurfaceMesh,
         owner: &[u32],
         p: u32,
     ) -> Result<(SurfaceMesh, Vec<u32>)> {
+        let mine: Vec<usize> = (0..start.triangles.len())
+            .filter(|&t| owner[t] == p as u32)
+            .collect();
+        let fans = fans(&mine.iter().map(|&t| start.triangles[t]).collect::<Vec<_>>());
         let mut local = HashMap::new();
         let mut ids = Vec::new();
-        let mut triangles = Vec::new();
-        let mut charts = Vec::new();
-        for (t, tri) in chart.triangles.iter().enumerate() {
-            if owner[t] != p {
-                continue;
-            }
-            triangles.push(tri.map(|v| {
-                *local.entry(v).or_insert_with(|| {
-                    ids.push(v);
+        let mut triangles = Vec::with_capacity(mine.len());
+        for (i, &t) in mine.iter().enumerate() {
+            let tri = start.triangles[t];
+            triangles.push([0, 1, 2].map(|k| {
+                *local.entry(fans[3 * i + k]).or_insert_with(|| {
+                    ids.push(tri[k]);
                     ids.len() as u32 - 1
                 })
             }));
-            charts.push(self.local(chart.charts[t])?);
         }
         let params = ids
             .iter()
             .map(|&v| {
-                let at = chart.params[v as usize];
+                let at = start.params[v as usize];
                 Ok(SurfacePoint {
                     tri: self.local(at.tri)?,
                     ..at
                 })
             })
             .collect::<Result<Vec<_>>>()?;
-        let faces = crate::mesh::face_labels(self.surface.model(), &charts)?;
         let piece = SurfaceMesh {
-            points: ids.iter().map(|&v| chart.points[v as usize]).collect(),
+            points: ids.iter().map(|&v| start.points[v as usize]).collect(),
             triangles,
             params,
-            charts,
-            faces,
+            charts: Vec::new(),
+            faces: mine.iter().map(|&t| start.faces[t]).collect(),
             hard_edges: Vec::new(),
             hard_edge_curves: Vec::new(),
             deviation: None,
-            diagonal: chart.diagonal,
+            diagonal: start.diagonal,
         };
         Ok((piece, ids))
     }
@@ -221,32 +421,17 @@ impl PartWork {
 }
 
 /// The pieces joined on their pinned vertices, in the whole's triangle
-/// ids, faces and curves.
-fn join(surface: &Surface, works: &[PartWork], pieces: &[Piece]) -> Result<SurfaceMesh> {
-    let whole_faces = surface.model().face_of_triangle();
+/// ids, and the whole's curves.
+fn join(surface: &Surface, works: &[PartWork], pieces: &[Piece]) -> Result<Joined> {
     let mut points: Vec<DVec3> = Vec::new();
     let mut params: Vec<SurfacePoint> = Vec::new();
+    let mut from: Vec<u32> = Vec::new();
     let mut triangles: Vec<[u32; 3]> = Vec::new();
     let mut faces: Vec<u32> = Vec::new();
     let mut at_pinned: HashMap<u32, u32> = HashMap::new();
     let mut deviation: Option<f64> = None;
     for (work, piece) in works.iter().zip(pieces) {
         let globals = work.part.global_triangles();
-        // Each local face's face in the whole, from a triangle in it.
-        let local_faces = work.surface.model().face_of_triangle();
-        let mut face_map = vec![
-            NONE;
-            local_faces
-                .iter()
-                .map(|&f| f as usize + 1)
-                .max()
-                .unwrap_or(0)
-        ];
-        for (t, &f) in local_faces.iter().enumerate() {
-            if work.owned[t] || face_map[f as usize] == NONE {
-                face_map[f as usize] = whole_faces[globals[t] as usize];
-            }
-        }
         let mesh = &piece.mesh;
         let index: Vec<u32> = (0..mesh.points.len())
             .map(|i| {
@@ -257,6 +442,7 @@ fn join(surface: &Surface, works: &[PartWork], pieces: &[Piece]) -> Result<Surfa
                         tri: globals[at.tri as usize],
                         ..at
                     });
+                    from.push(piece.pinned[i]);
                     points.len() as u32 - 1
                 };
                 match piece.pinned[i] {
@@ -266,13 +452,13 @@ fn join(surface: &Surface, works: &[PartWork], pieces: &[Piece]) -> Result<Surfa
             })
             .collect();
         triangles.extend(mesh.triangles.iter().map(|t| t.map(|v| index[v as usize])));
-        faces.extend(mesh.faces.iter().map(|&f| face_map[f as usize]));
+        faces.extend_from_slice(&mesh.faces);
         if let Some(d) = mesh.deviation {
             deviation = Some(deviation.map_or(d, |e: f64| e.max(d)));
         }
     }
     let curves = crate::mesh::curve_edges(surface, &params, &triangles)?;
-    Ok(SurfaceMesh {
+    let mesh = SurfaceMesh {
         points,
         triangles,
         params,
@@ -282,5 +468,6 @@ fn join(surface: &Surface, works: &[PartWork], pieces: &[Piece]) -> Result<Surfa
         hard_edge_curves: curves.curves,
         deviation,
         diagonal: surface.net().bbox_diagonal(),
-    })
+    };
+    Ok(Joined { mesh, from })
 }

@@ -55,9 +55,12 @@ impl Vertex {
 /// The surface and model queries the remesher moves vertices with.
 pub(crate) struct Placer<'a> {
     pub surface: &'a Surface,
-    /// The model face of each control triangle a vertex may land in,
-    /// [`NONE`] for one it may not.
+    /// The face of each control triangle a vertex may land in, [`NONE`]
+    /// for one it may not.
     face_of: Cow<'a, [u32]>,
+    /// The face each model face is in the mesh's terms, when they differ
+    /// (a part's surface has faces of its own, its mesh the whole's).
+    face_ids: Option<Vec<u32>>,
 }
 
 impl<'a> Placer<'a> {
@@ -65,20 +68,39 @@ impl<'a> Placer<'a> {
         Placer {
             surface,
             face_of: Cow::Borrowed(surface.model().face_of_triangle()),
+            face_ids: None,
         }
     }
 
-    /// A placer whose vertices land only in the control triangles `keep`
-    /// lets through (in a part's sub-net, those that evaluate as in the
-    /// whole).
-    pub fn within(surface: &'a Surface, keep: impl Fn(usize) -> bool) -> Placer<'a> {
-        let faces = surface.model().face_of_triangle();
-        let face_of = (0..faces.len())
-            .map(|t| if keep(t) { faces[t] } else { NONE })
+    /// A placer for a part's sub-net, whose mesh names faces by the
+    /// whole's ids (`whole_face` of each local control triangle):
+    /// vertices land only in the control triangles `keep` lets through
+    /// (those that evaluate as in the whole).
+    pub fn within(
+        surface: &'a Surface,
+        whole_face: &[u32],
+        keep: impl Fn(usize) -> bool,
+    ) -> Placer<'a> {
+        let model_faces = surface.model().face_of_triangle();
+        let mut face_ids = vec![NONE; surface.model().faces().len()];
+        for (t, &f) in model_faces.iter().enumerate() {
+            face_ids[f as usize] = whole_face[t];
+        }
+        let face_of = (0..model_faces.len())
+            .map(|t| if keep(t) { whole_face[t] } else { NONE })
             .collect();
         Placer {
             surface,
             face_of: Cow::Owned(face_of),
+            face_ids: Some(face_ids),
+        }
+    }
+
+    /// Model face `f` in the mesh's terms.
+    fn mesh_face(&self, f: u32) -> u32 {
+        match &self.face_ids {
+            Some(ids) => ids[f as usize],
+            None => f,
         }
     }
 
@@ -276,7 +298,12 @@ impl<'a> Placer<'a> {
             Kind::Curve { curve, t } => crate::curve::LimitCurve::new(self.surface, curve as usize)
                 .and_then(|c| c.surface_points(t))
                 .ok()
-                .and_then(|sides| sides.into_iter().find(|s| s.0 == face).map(|s| s.1))
+                .and_then(|sides| {
+                    sides
+                        .into_iter()
+                        .find(|s| self.mesh_face(s.0) == face)
+                        .map(|s| s.1)
+                })
                 .unwrap_or(v.at),
             Kind::Corner { vertex } => {
                 let topo = self.surface.net().topology();
