@@ -95,7 +95,7 @@ pub fn run(args: Args) -> Result<(), Error> {
     } else {
         remesh(&args, &surface)?
     };
-    let seconds = start.elapsed().as_secs_f64();
+    let meshing = start.elapsed().as_secs_f64();
     let snapped = if args.no_verify {
         None
     } else {
@@ -105,6 +105,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         spinner.finish_and_clear();
         Some(d)
     };
+    let checked = start.elapsed().as_secs_f64();
     // A .msh and any order above 1 go out as Lagrange elements.
     let curved = if args.order > 1 || CurvedFormat::of(&args.output) == Some(CurvedFormat::Msh) {
         let curved = mesh.raise_order(&surface, args.order)?;
@@ -118,10 +119,15 @@ pub fn run(args: Args) -> Result<(), Error> {
     if let Some(path) = &args.write_params {
         write_params(path, &mesh)?;
     }
+    let times = Times {
+        meshing,
+        checking: checked - meshing,
+        total: start.elapsed().as_secs_f64(),
+    };
     warn_of_surface_folds(&surface, &mesh);
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
-        summary(out, &mesh, seconds, snapped)?;
+        summary(out, &mesh, &times, snapped)?;
         if let Some((curved, validity)) = &curved {
             curved_output::summary(out, curved, validity)?;
         }
@@ -167,23 +173,35 @@ fn remesh(args: &Args, surface: &Surface) -> Result<SurfaceMesh, Error> {
     Ok(mesh)
 }
 
+/// Where the time went, in seconds from the start of meshing: the
+/// meshing, the chord-error check by snap, and all of it (writing too).
+struct Times {
+    meshing: f64,
+    checking: f64,
+    total: f64,
+}
+
 /// The mesh's size, speed, chord error (the bound measured while meshing
 /// and the one by snap, where known), angles and edge lengths.
 fn summary(
     out: &mut dyn Write,
     mesh: &SurfaceMesh,
-    seconds: f64,
+    times: &Times,
     snapped: Option<f64>,
 ) -> std::io::Result<()> {
     let quality = mesh.quality();
     let relative = |d: f64| d / mesh.diagonal;
     writeln!(
         out,
-        "output: {} vertices, {} triangles, {} hard edges in {seconds:.3} s ({:.2}M triangles/s)",
+        "output: {} vertices, {} triangles, {} hard edges in {:.3} s (meshing {:.3} s, {:.2}M triangles/s; checking {:.3} s; writing {:.3} s)",
         mesh.points.len(),
         mesh.triangles.len(),
         mesh.hard_edges.len(),
-        mesh.triangles.len() as f64 / seconds.max(1e-12) / 1e6
+        times.total,
+        times.meshing,
+        mesh.triangles.len() as f64 / times.meshing.max(1e-12) / 1e6,
+        times.checking,
+        times.total - times.meshing - times.checking
     )?;
     let line = match (mesh.deviation, snapped) {
         (Some(b), Some(s)) => format!(

@@ -126,6 +126,74 @@ fn fandisk_in_parts_is_one_mesh_on_the_whole_surface() {
     }
 }
 
+/// The boundary loops of a mesh whose every edge is in one or two
+/// triangles, consistently oriented; panics otherwise.
+fn boundary_loops(mesh: &SurfaceMesh, what: &str) -> usize {
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    for tri in &mesh.triangles {
+        for k in 0..3 {
+            *directed.entry((tri[k], tri[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    let mut next: HashMap<u32, u32> = HashMap::new();
+    for (&(a, b), &n) in &directed {
+        assert_eq!(n, 1, "{what}: edge {a}→{b} in {n} triangles");
+        if !directed.contains_key(&(b, a)) {
+            assert!(
+                next.insert(a, b).is_none(),
+                "{what}: two boundary edges leave {a}"
+            );
+        }
+    }
+    let mut loops = 0;
+    let mut seen = HashSet::new();
+    for &start in next.keys() {
+        if seen.insert(start) {
+            loops += 1;
+            let mut v = next[&start];
+            while seen.insert(v) {
+                v = next[&v];
+            }
+        }
+    }
+    loops
+}
+
+/// The pig (open, creased at 40°, folding in one place) in 5 parts: one
+/// mesh with the whole run's boundary loops (an interface not joined would
+/// open more), every vertex the surface at its parameters, and the same
+/// bits on one thread and on two.
+#[test]
+fn an_open_creased_surface_in_parts_has_the_whole_runs_boundary() {
+    let Some(path) = common::cgal_mesh("pig.off") else {
+        return;
+    };
+    let mut net = ControlNet::read(&path).unwrap();
+    net.tag_by_angle(40.0).unwrap();
+    let surface = Surface::new(&net).unwrap();
+    let whole = remesh(&surface, 1, 2);
+    let parts = remesh(&surface, 5, 2);
+    let serial = remesh(&surface, 5, 1);
+    assert_eq!(parts.triangles, serial.triangles);
+    assert_eq!(parts.points, serial.points);
+    let loops = boundary_loops(&whole, "the pig whole");
+    assert!(loops > 0, "the pig is open");
+    assert_eq!(boundary_loops(&parts, "the pig in 5 parts"), loops);
+    for (p, at) in parts.points.iter().zip(&parts.params) {
+        assert_eq!(surface.point(at.tri as usize, at.v, at.w).unwrap(), *p);
+    }
+    let (q, w) = (parts.quality(), whole.quality());
+    println!(
+        "pig in 5 parts: {} triangles (whole {}), mean-min {:.2}° (whole {:.2}°), min {:.2}° (whole {:.2}°)",
+        parts.triangles.len(),
+        whole.triangles.len(),
+        q.mean_min_angle,
+        w.mean_min_angle,
+        q.min_angle,
+        w.min_angle
+    );
+}
+
 #[test]
 fn zero_parts_are_refused() {
     let net = common::example("viking", Some(30.0));

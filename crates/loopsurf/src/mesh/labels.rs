@@ -122,17 +122,22 @@ pub fn curve_edges(
     }
     // Along each curve, neighbours in t joined by an output edge are its
     // edges (so an output edge may span several control edges); around a
-    // closed curve, also its last and first vertex.
+    // closed curve, also its last and first vertex. Vertices at one t
+    // (copies of one point, as where a mesh is cut open) are neighbours of
+    // every vertex at the t before and after.
     let model = surface.model();
     let mut found: Vec<(u32, f64, [u32; 2], [f64; 2])> = Vec::new();
     for run in on_curve.chunk_by(|x, y| x.0 == y.0) {
         let c = run[0].0;
         let closed = model.curves()[c as usize].is_closed();
-        let wrap = closed.then(|| (run[run.len() - 1], run[0]));
-        for (x, y) in run.windows(2).map(|w| (w[0], w[1])).chain(wrap) {
-            let (a, b) = (x.2, y.2);
-            if a != b && joined.contains(&(a.min(b), a.max(b))) {
-                found.push((c, x.1, [a, b], [x.1, y.1]));
+        let groups: Vec<&[(u32, f64, u32)]> = run.chunk_by(|x, y| x.1 == y.1).collect();
+        let wrap = (closed && groups.len() > 1).then(|| (groups[groups.len() - 1], groups[0]));
+        for (g, h) in groups.windows(2).map(|w| (w[0], w[1])).chain(wrap) {
+            for (x, y) in g.iter().flat_map(|x| h.iter().map(move |y| (x, y))) {
+                let (a, b) = (x.2, y.2);
+                if a != b && joined.contains(&(a.min(b), a.max(b))) {
+                    found.push((c, x.1, [a, b], [x.1, y.1]));
+                }
             }
         }
     }

@@ -5,10 +5,15 @@
 use super::SurfaceMesh;
 use crate::error::Result;
 use crate::geometry::{area_normal, max_cosine};
-use crate::snap::snap_near;
+use crate::snap::{project, snap_near};
 use crate::surface::{Curvature, Surface};
 use glam::DVec3;
 use rayon::prelude::*;
+
+/// Probes [`SurfaceMesh::snap_deviation`] snaps at a time, from the
+/// largest bound down: enough to keep the threads busy, few enough that
+/// it stops soon after the maximum is certain.
+const SNAP_BATCH: usize = 256;
 
 /// Shape of one output triangle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -147,9 +152,53 @@ impl SurfaceMesh {
     }
 
     /// The largest distance from the mesh to the surface at the centroid of
-    /// every triangle and the midpoint of every edge, by snap (global
-    /// closest point, started from the chart's parameters).
+    /// every triangle and the midpoint of every edge, by snap (the global
+    /// closest point, certified).
+    ///
+    /// Certifying every probe costs twice the meshing (bunny00 at 0.3%:
+    /// 19 s against 9 s), and the maximum needs few of them: any surface
+    /// point bounds a probe's distance from above. So every probe is first
+    /// projected locally from its hint (the chart's parameters, or the
+    /// surface point of its heaviest corner), which gives that bound;
+    /// then, from the largest bound down, probes are snapped in batches
+    /// until the next bound is no larger than the largest distance
+    /// snapped. No probe left can be farther: the answer is the certified
+    /// maximum, as if every probe were snapped.
     pub fn snap_deviation(&self, surface: &Surface) -> Result<f64> {
+        let probes = self.probes(surface.net());
+        let mut bounds: Vec<(f64, usize)> = probes
+            .par_iter()
+            .enumerate()
+            .map(|(i, &(x, (tri, v, w)))| {
+                let d =
+                    project(surface, x, tri as usize, v, w).map_or(f64::INFINITY, |s| s.distance);
+                (d, i)
+            })
+            .collect();
+        bounds.par_sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let mut worst: f64 = 0.0;
+        for batch in bounds.chunks(SNAP_BATCH) {
+            if batch[0].0 <= worst {
+                break;
+            }
+            let snapped = batch
+                .par_iter()
+                .filter(|&&(bound, _)| bound > worst)
+                .map(|&(_, i)| {
+                    let (x, (tri, v, w)) = probes[i];
+                    Ok(snap_near(surface, x, tri as usize, v, w)?.distance)
+                })
+                .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
+            worst = worst.max(snapped);
+        }
+        Ok(worst)
+    }
+
+    /// The chord-error probes: each triangle's centroid and each edge's
+    /// midpoint, with the hint their snap starts from (the same weights in
+    /// the chart, or without charts the surface point of the heaviest
+    /// corner).
+    fn probes(&self, net: &crate::ControlNet) -> Vec<(DVec3, (u32, f64, f64))> {
         // Probes: (triangle, weights of its corners); each edge once.
         let mut edges: Vec<(u64, u32, u8)> = Vec::with_capacity(3 * self.triangles.len());
         for (t, tri) in self.triangles.iter().enumerate() {
@@ -169,16 +218,13 @@ impl SurfaceMesh {
             weights[(k as usize + 1) % 3] = 0.5;
             (t as usize, weights)
         });
-        let net = surface.net();
         centroids
             .chain(midpoints)
             .map(|(t, weights)| {
                 let x: DVec3 = (0..3)
                     .map(|k| weights[k] * self.points[self.triangles[t][k] as usize])
                     .sum();
-                // The hint: the same weights in the chart, or without
-                // charts the surface point of the heaviest corner.
-                let (tri, v, w) = if self.charts.is_empty() {
+                let hint = if self.charts.is_empty() {
                     let k = (0..3).fold(0, |b, k| if weights[k] > weights[b] { k } else { b });
                     let p = self.params[self.triangles[t][k] as usize];
                     (p.tri, p.v, p.w)
@@ -188,8 +234,8 @@ impl SurfaceMesh {
                     let w = (0..3).map(|k| weights[k] * params[k].w).sum::<f64>();
                     (params[0].tri, v, w)
                 };
-                Ok(snap_near(surface, x, tri as usize, v, w)?.distance)
+                (x, hint)
             })
-            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
+            .collect()
     }
 }

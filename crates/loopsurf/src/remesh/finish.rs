@@ -5,18 +5,18 @@ use crate::mesh::SurfaceMesh;
 use crate::topology::NONE;
 
 /// The output: live vertices and triangles compacted, feature edges
-/// ordered by curve and parameter; and the pinned id of each output vertex
-/// ([`Remeshing::pinned`]).
+/// ordered by curve and parameter; and the id in `work` of each output
+/// vertex.
 pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> (SurfaceMesh, Vec<u32>) {
     let (triangles, faces, index) = work.mesh.compact();
     let mut points = Vec::with_capacity(triangles.len() / 2 + 2);
     let mut params = Vec::with_capacity(triangles.len() / 2 + 2);
-    let mut pinned = Vec::with_capacity(triangles.len() / 2 + 2);
+    let mut kept = Vec::with_capacity(triangles.len() / 2 + 2);
     for (v, &i) in index.iter().enumerate() {
         if i != NONE {
             points.push(work.vertices[v].x);
             params.push(work.vertices[v].at);
-            pinned.push(work.pinned[v]);
+            kept.push(v as u32);
         }
     }
     let mut hard: Vec<(u32, f64, [u32; 2])> = Vec::new();
@@ -53,5 +53,5 @@ pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> (SurfaceMesh, 
         deviation,
         diagonal: work.placer.surface.net().bbox_diagonal(),
     };
-    (mesh, pinned)
+    (mesh, kept)
 }

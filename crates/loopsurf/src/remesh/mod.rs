@@ -247,7 +247,7 @@ impl<'a> Remesher<'a> {
                 let chart = start::chart_mesh(self.surface, largest, sizing.adapts_to(), &budget)?;
                 let placer = vertices::Placer::new(self.surface);
                 let mut work = start::start_from(placer, &chart)?;
-                let deviation = remesh(&mut work, &sizing, tolerance, &budget)?;
+                let (deviation, _) = remesh(&mut work, &sizing, tolerance, &budget, None)?;
                 Ok(finish::finish(&work, deviation).0)
             }
             k => parts::run(self, k),
@@ -257,15 +257,20 @@ impl<'a> Remesher<'a> {
 
 /// Remeshes `work`: rounds of the passes and a polish; then, under a
 /// tolerance, the chord error measured, and where it is missed the sizes
-/// shrunk and the rounds and polish run again. Returns the largest chord
-/// error measured (under a tolerance).
+/// shrunk and the rounds and polish run again. The sizes start shrunk by
+/// `shrunk` per control triangle, if given. Returns the largest chord error
+/// measured (under a tolerance) and the shrink factors at the end.
 fn remesh(
     work: &mut Remeshing,
     sizing: &Sizing,
     tolerance: Option<f64>,
     budget: &Budget,
-) -> Result<Option<f64>> {
-    let mut shrinking = Shrinking::new(work.placer.surface.net().triangles().len());
+    shrunk: Option<Vec<f64>>,
+) -> Result<(Option<f64>, Vec<f64>)> {
+    let mut shrinking = match shrunk {
+        Some(factors) => Shrinking::from_factors(factors),
+        None => Shrinking::new(work.placer.surface.net().triangles().len()),
+    };
     let mut deviation = None;
     for round in 0..=TOLERANCE_ROUNDS {
         remesh_rounds(work, sizing, shrinking.factors(), budget, round == 0)?;
@@ -279,7 +284,7 @@ fn remesh(
         }
         shrinking.shrink_where_missed(work, &errors, tol);
     }
-    Ok(deviation)
+    Ok((deviation, shrinking.factors().to_vec()))
 }
 
 /// [`ROUNDS`] rounds of the passes at the sizes `sizing` gives, shrunk by
@@ -299,7 +304,13 @@ fn remesh_rounds(
         if shake && SHAKE_ROUNDS.contains(&r) {
             work.shake(SHAKE);
         }
-        work.size = sizing.sizes(surface, &work.mesh, &work.vertices, shrink);
+        work.size = sizing.sizes(
+            surface,
+            &work.mesh,
+            &work.vertices,
+            shrink,
+            &work.size_bound,
+        );
         budget.check(work.expected_triangles())?;
         let limit = budget.split_limit(work.triangle_slots());
         work.split_long(limit);

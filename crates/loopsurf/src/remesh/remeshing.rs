@@ -23,6 +23,10 @@ pub(crate) struct Remeshing<'a> {
     /// vertex on an interface between parts, which both sides share and
     /// neither may move or remove), else [`NONE`].
     pub pinned: Vec<u32>,
+    /// Per vertex: a bound on its size before grading (infinite but where
+    /// the size around a pinned vertex is known from before: grading is
+    /// not local, and a piece alone would not see what shrank it).
+    pub size_bound: Vec<f64>,
     /// [`Connectivity::can_collapse`]'s work space, kept between calls.
     pub(super) scratch: [Vec<u32>; 2],
 }
@@ -34,7 +38,9 @@ impl<'a> Remeshing<'a> {
     pub fn new(placer: Placer<'a>, mesh: Connectivity, vertices: Vec<Vertex>) -> Remeshing<'a> {
         let size = vec![f64::INFINITY; vertices.len()];
         let pinned = vec![NONE; vertices.len()];
+        let size_bound = vec![f64::INFINITY; vertices.len()];
         Remeshing {
+            size_bound,
             placer,
             mesh,
             vertices,
@@ -69,6 +75,7 @@ impl Remeshing<'_> {
         self.vertices.push(v);
         self.size.push(size);
         self.pinned.push(NONE);
+        self.size_bound.push(f64::INFINITY);
     }
 
     /// The position of v, or of its new state if it is the one `moved`.

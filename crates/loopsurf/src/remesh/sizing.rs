@@ -191,13 +191,14 @@ impl Sizing {
 
     /// The target size of every vertex (dead ones included, ignored):
     /// its control triangle's, times that triangle's `shrink` factor (where
-    /// the chord error was too large), graded.
+    /// the chord error was too large), at most its `bound`, graded.
     pub fn sizes(
         &self,
         surface: &Surface,
         mesh: &Connectivity,
         vertices: &[Vertex],
         shrink: &[f64],
+        bound: &[f64],
     ) -> Vec<f64> {
         match self {
             // No tolerance: nothing shrinks.
@@ -211,7 +212,8 @@ impl Sizing {
             } => {
                 let mut size: Vec<f64> = vertices
                     .par_iter()
-                    .map(|v| {
+                    .zip(bound)
+                    .map(|(v, &bound)| {
                         let t = v.at.tri as usize;
                         let k = curvature_at(surface, t, v.at.v, v.at.w);
                         let own = (CHORD_FACTOR * tolerance / k).sqrt();
@@ -223,7 +225,9 @@ impl Sizing {
                         } else {
                             own
                         };
-                        (per_triangle[t].min(own) * shrink[t]).max(*floor)
+                        (per_triangle[t].min(own) * shrink[t])
+                            .max(*floor)
+                            .min(bound)
                     })
                     .collect();
                 grade(mesh, vertices, &mut size, *gradation);

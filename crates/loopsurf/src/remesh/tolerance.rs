@@ -83,6 +83,15 @@ impl Shrinking {
         }
     }
 
+    /// Shrunk by `factors` already (a part carrying on from another
+    /// part's tolerance rounds).
+    pub fn from_factors(factors: Vec<f64>) -> Shrinking {
+        Shrinking {
+            last_missed: vec![f64::INFINITY; factors.len()],
+            factors,
+        }
+    }
+
     /// The factor each control triangle's sizes are shrunk by.
     pub fn factors(&self) -> &[f64] {
         &self.factors
