@@ -78,6 +78,7 @@ module loopsurf
         integer(c_int) :: adapt_curvature
         real(c_double) :: gradation
         integer(c_size_t) :: max_triangles
+        integer(c_size_t) :: parts, threads
     end type
 
     !> Options of ls_adapt, adaptive subdivision.

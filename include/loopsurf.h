@@ -835,6 +835,16 @@ typedef struct {
   // many it asked for, before the memory is spent. Default 20 million
   // (about 8 GB while remeshing).
   size_t max_triangles;
+  // Remesh in this many parts of the control net (METIS), each on its
+  // own thread, joined along interfaces meshed first and then moved;
+  // the mesh is the same for any thread count. 1 remeshes whole. Added
+  // after the first release: a caller compiled without it gets 1.
+  // Default 1.
+  size_t parts;
+  // Threads this call may use: 0 for the library's pool (as many as
+  // `RAYON_NUM_THREADS` says, else one per core), N for at most N. The
+  // mesh is the same for any count. Added with `parts`. Default 0.
+  size_t threads;
 } ls_remesh_options;
 
 // Options of `ls_mesh_curve`: fill with `ls_mesh_curve_options_default`,

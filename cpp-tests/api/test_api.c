@@ -5,6 +5,7 @@
 #include <loopsurf.h>
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -971,7 +972,7 @@ static void test_remesh(const char* data_dir) {
     ls_remesh_options o;
     EXPECT(ls_remesh_options_default(&o), LS_OK);
     CHECK(o.struct_size == sizeof o && o.size == 0 && o.tolerance == 1e-3 && o.adapt_curvature == 1);
-    CHECK(o.gradation == 1.3 && o.max_triangles == 20000000);
+    CHECK(o.gradation == 1.3 && o.max_triangles == 20000000 && o.parts == 1 && o.threads == 0);
     o.size = 0.3;
     o.tolerance = 1e-2;
     o.gradation = 1.5;
@@ -989,6 +990,31 @@ static void test_remesh(const char* data_dir) {
     CHECK(euler(m.nv, m.tris, m.nt) == 2);
     EXPECT(ls_trimesh_deviation(mesh, &dev), LS_OK);
     CHECK(dev >= 0 && dev <= 1e-3);
+    ls_trimesh_free(mesh);
+
+    /* In parts: one closed mesh on the surface, the same on one thread
+       and on two. */
+    ls_remesh_options in_parts = o;
+    in_parts.parts = 3;
+    in_parts.threads = 1;
+    EXPECT(ls_remesh(surface, &in_parts, &mesh), LS_OK);
+    m = view(mesh);
+    CHECK(m.nt > 8 && euler(m.nv, m.tris, m.nt) == 2 && closed_edges(m.tris, m.nt) > 0);
+    in_parts.threads = 2;
+    ls_trimesh* two = NULL;
+    EXPECT(ls_remesh(surface, &in_parts, &two), LS_OK);
+    mesh_view m2 = view(two);
+    CHECK(m2.nv == m.nv && m2.nt == m.nt);
+    CHECK(memcmp(m2.tris, m.tris, 3 * m.nt * sizeof *m.tris) == 0);
+    CHECK(memcmp(m2.xyz, m.xyz, 3 * m.nv * sizeof *m.xyz) == 0);
+    ls_trimesh_free(two);
+    ls_trimesh_free(mesh);
+    /* A caller compiled before `parts` existed: the struct ends at
+       max_triangles, and it gets one part. */
+    ls_remesh_options older = o;
+    older.struct_size = offsetof(ls_remesh_options, parts);
+    older.parts = 0;
+    EXPECT(ls_remesh(surface, &older, &mesh), LS_OK);
     ls_trimesh_free(mesh);
 
     /* Refusals, each naming its field; the output untouched. */
@@ -1028,6 +1054,10 @@ static void test_remesh(const char* data_dir) {
         CHECK(strstr(ls_last_error(), "ls_remesh: ") == ls_last_error());
         CHECK(strstr(ls_last_error(), bad[i].name) != NULL);
     }
+    EXPECT(ls_remesh_options_default(&b), LS_OK);
+    b.parts = 0;
+    EXPECT(ls_remesh(surface, &b, &mesh), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "parts") != NULL);
     /* No density at all. */
     EXPECT(ls_remesh_options_default(&b), LS_OK);
     b.tolerance = 0;

@@ -4,7 +4,8 @@
 // point on the flat control net, and its remesher against CGAL's isotropic
 // remeshing of the control net, on the same meshes and points, in one run.
 // Medians of several repetitions; single thread unless noted (run with
-// RAYON_NUM_THREADS=1 for a single-thread loopsurf refinement and remesher).
+// RAYON_NUM_THREADS=1 for a single-thread loopsurf refinement; the
+// remesher's rows name their threads).
 //
 // Usage: bench_peers DATA_DIR [--viking FILE] [SECTION...]
 // SECTION is eval, refine, snap or remesh (all when none is named). The
@@ -375,33 +376,44 @@ static void remeshing(const std::string& name, const std::string& path, double a
                      hard.size());
 
     // loopsurf: the surface (tagged, built) is ready; only ls_remesh runs
-    // on the clock, and its mesh is freed after.
-    AngleStats loop;
-    std::vector<double> loop_t;
-    ls_remesh_options options;
-    ls_remesh_options_default(&options);
-    options.size = h;
-    options.tolerance = 0;
-    options.adapt_curvature = 0;
-    for (int r = 0; r < reps; r++) {
-        ls_trimesh* mesh = nullptr;
-        auto a = std::chrono::steady_clock::now();
-        if (ls_remesh(n.surface, &options, &mesh) != LS_OK) fail("ls_remesh");
-        loop_t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
-        size_t nv, nt, per;
-        const double* xyz;
-        const int32_t* tris;
-        if (ls_trimesh_counts(mesh, &nv, &nt, &per) != LS_OK || ls_trimesh_xyz(mesh, &xyz) != LS_OK ||
-            ls_trimesh_elements(mesh, &tris) != LS_OK)
-            fail("ls_trimesh");
-        if (r == 0) loop = angle_stats(std::vector<double>(xyz, xyz + 3 * nv), std::vector<int32_t>(tris, tris + 3 * nt), h);
-        ls_trimesh_free(mesh);
-    }
-
+    // on the clock, and its mesh is freed after. Whole and in 8 parts, on
+    // one thread and on two.
     char label[96];
     std::snprintf(label, sizeof label, "%s, %g%%, %g°", name.c_str(), 100 * relative, angle);
     remesh_row(label, "CGAL isotropic_remeshing", angle_stats(cgal.xyz, cgal.tris, h), median(cgal.seconds));
-    remesh_row(label, "loopsurf ls_remesh", loop, median(loop_t));
+    for (size_t parts : {1, 8}) {
+        for (size_t threads : {1, 2}) {
+            AngleStats loop;
+            std::vector<double> loop_t;
+            ls_remesh_options options;
+            ls_remesh_options_default(&options);
+            options.size = h;
+            options.tolerance = 0;
+            options.adapt_curvature = 0;
+            options.parts = parts;
+            options.threads = threads;
+            for (int r = 0; r < reps; r++) {
+                ls_trimesh* mesh = nullptr;
+                auto a = std::chrono::steady_clock::now();
+                if (ls_remesh(n.surface, &options, &mesh) != LS_OK) fail("ls_remesh");
+                loop_t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+                size_t nv, nt, per;
+                const double* xyz;
+                const int32_t* tris;
+                if (ls_trimesh_counts(mesh, &nv, &nt, &per) != LS_OK || ls_trimesh_xyz(mesh, &xyz) != LS_OK ||
+                    ls_trimesh_elements(mesh, &tris) != LS_OK)
+                    fail("ls_trimesh");
+                if (r == 0) loop = angle_stats(std::vector<double>(xyz, xyz + 3 * nv), std::vector<int32_t>(tris, tris + 3 * nt), h);
+                ls_trimesh_free(mesh);
+            }
+            char peer[64];
+            if (parts == 1)
+                std::snprintf(peer, sizeof peer, "loopsurf ls_remesh, %zu thread%s", threads, threads > 1 ? "s" : "");
+            else
+                std::snprintf(peer, sizeof peer, "loopsurf ls_remesh, %zu parts, %zu thread%s", parts, threads, threads > 1 ? "s" : "");
+            remesh_row(label, peer, loop, median(loop_t));
+        }
+    }
     ls_surface_free(n.surface);
 }
 
@@ -436,11 +448,11 @@ int main(int argc, char** argv) {
         snapping("bunny00", dir + "/bunny00.off");
     }
     if (run("remesh")) {
-        const char* threads = std::getenv("RAYON_NUM_THREADS");
         const int reps = 5;
-        std::printf("\nRemeshing, medians of %d runs: CGAL isotropic_remeshing of the control net (3 iterations, sharp\n"
-                    "edges constrained, one thread), loopsurf's remesher of the limit surface (%s threads)\n\n",
-                    reps, threads ? threads : "all");
+        std::printf("\nRemeshing, medians of %d runs (bunny00: 3): CGAL isotropic_remeshing of the control net (3 iterations,\n"
+                    "sharp edges constrained, one thread), loopsurf's remesher of the limit surface, whole and in 8 parts,\n"
+                    "on the threads each row names\n\n",
+                    reps);
         std::printf("| case: h (of the diagonal), sharp edges | peer | triangles | min angle | mean-min | edges: 5%% / 50%% / 95%% | time | triangles/s |\n"
                     "|---|---|---|---|---|---|---|---|\n");
         if (!viking.empty())
@@ -449,6 +461,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "Viking skipped: no --viking FILE (see the usage at the top of bench_peers.cpp)\n");
         remeshing("fandisk", dir + "/fandisk.off", 30, 0.005, reps);
         remeshing("pig", dir + "/pig.off", 40, 0.005, reps);
+        remeshing("bunny00", dir + "/bunny00.off", 180, 0.003, 3);
     }
     return 0;
 }

@@ -37,10 +37,20 @@ pub struct ls_remesh_options {
     /// many it asked for, before the memory is spent. Default 20 million
     /// (about 8 GB while remeshing).
     pub max_triangles: usize,
+    /// Remesh in this many parts of the control net (METIS), each on its
+    /// own thread, joined along interfaces meshed first and then moved;
+    /// the mesh is the same for any thread count. 1 remeshes whole. Added
+    /// after the first release: a caller compiled without it gets 1.
+    /// Default 1.
+    pub parts: usize,
+    /// Threads this call may use: 0 for the library's pool (as many as
+    /// `RAYON_NUM_THREADS` says, else one per core), N for at most N. The
+    /// mesh is the same for any count. Added with `parts`. Default 0.
+    pub threads: usize,
 }
 
 impl Options for ls_remesh_options {
-    const FIRST_SIZE: usize = std::mem::size_of::<ls_remesh_options>();
+    const FIRST_SIZE: usize = std::mem::offset_of!(ls_remesh_options, parts);
     fn defaults() -> Self {
         ls_remesh_options {
             struct_size: std::mem::size_of::<ls_remesh_options>(),
@@ -49,6 +59,8 @@ impl Options for ls_remesh_options {
             adapt_curvature: 1,
             gradation: DEFAULT_GRADATION,
             max_triangles: DEFAULT_MAX_TRIANGLES,
+            parts: 1,
+            threads: 0,
         }
     }
 }
@@ -100,7 +112,11 @@ pub unsafe extern "C" fn ls_remesh(
                 o.gradation
             ));
         }
+        if o.parts == 0 {
+            return bad("parts = 0: must be at least 1".into());
+        }
         let mut remesher = Remesher::new(surface)
+            .parts(o.parts)
             .adapt_curvature(flag(o.adapt_curvature, "adapt_curvature")?)
             .gradation(o.gradation)
             .max_triangles(budget(o.max_triangles)?);
@@ -110,7 +126,14 @@ pub unsafe extern "C" fn ls_remesh(
         if o.tolerance != 0.0 {
             remesher = remesher.tolerance(o.tolerance);
         }
-        let made = remesher.run()?;
+        let made = match o.threads {
+            0 => remesher.run()?,
+            n => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| Fail::new(LS_ERR_INVALID_ARGUMENT, format!("threads = {n}: {e}")))?
+                .install(|| remesher.run())?,
+        };
         let mut result = ls_trimesh::straight(&made.points, &made.triangles, &made.params)?;
         result.element_face = Some(c_ints(&made.faces));
         result.deviation = made.deviation.map(|d| d / made.diagonal);
