@@ -21,7 +21,11 @@
 //! vertices' control triangles are in). Each part remeshes its piece of
 //! the band once more, its new interface and the band's rim pinned; the
 //! rest of the mesh, done, stays as it is. The new interfaces run through
-//! vertices the first pass has already placed well.
+//! vertices the first pass has already placed well. Where the second cut
+//! must cross a first interface (two networks of cuts over one surface
+//! cross), the first interface's vertices there are pinned again; a last
+//! round remeshes the band around those crossings, each connected blob as
+//! one uncut piece.
 //!
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
@@ -52,6 +56,13 @@ use std::sync::Mutex;
 /// The second pass remeshes the vertices within this many edges of a
 /// first-pass interface.
 const BAND_RINGS: usize = 4;
+
+/// Where the second cut crossed a first interface, the vertices within
+/// this many edges of the first interface's vertices it pinned are
+/// remeshed once more. Four rings lifted fandisk in 8 parts to mean-min
+/// 50.37° and eight to 50.52° (50.28° whole), joint in 4 parts from 49.90°
+/// to 50.12° (49.95° whole).
+const CROSSING_RINGS: usize = 8;
 
 /// The second partition avoids cutting the control triangles within this
 /// many vertex rings of those holding a first-pass interface vertex. Two
@@ -140,15 +151,17 @@ fn first_pass(remesher: &Remesher, k: usize) -> Result<(Joined, Vec<bool>)> {
 /// from the start's `on_interface` ones where `pass.from` says: the band
 /// around the interfaces, cut along a second partition that keeps away
 /// from them, each piece remeshed with its new interface and its rim
-/// pinned; the rest of the mesh stays as it is.
+/// pinned; the rest of the mesh stays as it is. Then the crossings: where
+/// the second cut had to cross a first interface, the band around the
+/// first-interface vertices it pinned again is remeshed once more, each
+/// connected blob of it as one piece, uncut.
 fn second_pass(
     remesher: &Remesher,
     k: usize,
     pass: &Joined,
     on_interface: &[bool],
 ) -> Result<SurfaceMesh> {
-    let surface = remesher.surface;
-    let net = surface.net();
+    let net = remesher.surface.net();
     let mesh = &pass.mesh;
     let old: Vec<bool> = pass
         .from
@@ -175,7 +188,83 @@ fn second_pass(
             }
         })
         .collect();
-    let shared = shared_vertices(&mesh.triangles, &owner, mesh.points.len());
+    let (moved, shared) = remesh_band(remesher, pass, &band, &owner, k, second.parts())?;
+    // The first interface's vertices the second cut pinned again.
+    let again: Vec<bool> = moved
+        .from
+        .iter()
+        .map(|&g| g != NONE && old[g as usize] && shared[g as usize])
+        .collect();
+    if !again.contains(&true) {
+        return Ok(moved.mesh);
+    }
+    let mesh = &moved.mesh;
+    let band = mesh_rings(&mesh.triangles, &again, CROSSING_RINGS);
+    let (owner, blobs) = blobs(&mesh.triangles, &band);
+    let nobody = vec![NONE; net.triangles().len()];
+    Ok(
+        remesh_band(remesher, &moved, &band, &owner, blobs, &nobody)?
+            .0
+            .mesh,
+    )
+}
+
+/// The triangles with a vertex in `band`, each connected set of them (by
+/// band vertices) numbered: the number of each triangle ([`NONE`] outside
+/// the band, numbered in triangle order), and how many.
+fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) {
+    let mut class: Vec<usize> = (0..triangles.len()).collect();
+    fn root(class: &mut [usize], mut c: usize) -> usize {
+        while class[c] != c {
+            class[c] = class[class[c]];
+            c = class[c];
+        }
+        c
+    }
+    let mut first = vec![usize::MAX; band.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &v in tri.iter().filter(|&&v| band[v as usize]) {
+            match first[v as usize] {
+                usize::MAX => first[v as usize] = t,
+                u => {
+                    let (a, b) = (root(&mut class, u), root(&mut class, t));
+                    class[a.max(b)] = a.min(b);
+                }
+            }
+        }
+    }
+    let mut number = vec![NONE; triangles.len()];
+    let mut owner = vec![NONE; triangles.len()];
+    let mut count = 0;
+    for (t, tri) in triangles.iter().enumerate() {
+        if tri.iter().any(|&v| band[v as usize]) {
+            let r = root(&mut class, t);
+            if number[r] == NONE {
+                number[r] = count;
+                count += 1;
+            }
+            owner[t] = number[r];
+        }
+    }
+    (owner, count as usize)
+}
+
+/// The triangles of `pass.mesh` that `owner` gives a part (of `k`; the
+/// others, [`NONE`], stay) remeshed, each part's piece alone on a sub-net
+/// of its own, with every vertex outside `band` and every vertex two
+/// parts share pinned, and joined; with, per vertex of `pass.mesh`,
+/// whether it was so shared. Part p's sub-net owns (for its shrink
+/// factors) the control triangles t with `control_owner[t] == p`.
+fn remesh_band(
+    remesher: &Remesher,
+    pass: &Joined,
+    band: &[bool],
+    owner: &[u32],
+    k: usize,
+    control_owner: &[u32],
+) -> Result<(Joined, Vec<bool>)> {
+    let mesh = &pass.mesh;
+    let shared = shared_vertices(&mesh.triangles, owner, mesh.points.len());
     let pins: Vec<u32> = (0..mesh.points.len() as u32)
         .map(|v| {
             if shared[v as usize] || !band[v as usize] {
@@ -186,7 +275,7 @@ fn second_pass(
         })
         .collect();
     let mut cover: Vec<Vec<u32>> = vec![Vec::new(); k];
-    for (tri, &p) in mesh.triangles.iter().zip(&owner) {
+    for (tri, &p) in mesh.triangles.iter().zip(owner) {
         if p != NONE {
             cover[p as usize].extend(tri.map(|v| mesh.params[v as usize].tri));
         }
@@ -200,26 +289,27 @@ fn second_pass(
             PartWork::new(
                 remesher,
                 &cover[p as usize],
-                second.parts(),
+                control_owner,
                 p,
                 Some(&pass.shrunk),
             )
         })
         .collect::<Result<_>>()?;
-    let mut pieces = vec![kept(pass, &owner)];
+    let mut pieces = vec![kept(pass, owner)];
     pieces.extend(remesh_pieces(
         &works,
         &parts,
         mesh,
-        &owner,
+        owner,
         &pins,
         Some(&pass.sizes),
     )?);
-    Ok(join(surface, &pieces)?.mesh)
+    Ok((join(remesher.surface, &pieces)?, shared))
 }
 
 /// The triangles of `mesh` no part remeshes (`owner` [`NONE`]), as a
-/// piece whose every vertex is pinned to itself.
+/// piece whose every vertex is pinned to itself, with `pass`'s shrink
+/// factors.
 fn kept(pass: &Joined, owner: &[u32]) -> Piece {
     let mesh = &pass.mesh;
     let mut local = vec![NONE; mesh.points.len()];
@@ -254,7 +344,10 @@ fn kept(pass: &Joined, owner: &[u32]) -> Piece {
         mesh: piece,
         sizes: pinned.iter().map(|&v| pass.sizes[v as usize]).collect(),
         pinned,
-        shrunk: Vec::new(),
+        shrunk: (0..pass.shrunk.len() as u32)
+            .filter(|&t| pass.shrunk[t as usize] < 1.0)
+            .map(|t| (t, pass.shrunk[t as usize]))
+            .collect(),
     }
 }
 
