@@ -2,7 +2,9 @@
 
 use super::remeshing::Remeshing;
 use crate::mesh::SurfaceMesh;
+use crate::parameters::SurfacePoint;
 use crate::topology::NONE;
+use glam::DVec3;
 
 /// The output: live vertices and triangles compacted, feature edges
 /// ordered by curve and parameter; and the id in `work` of each output
@@ -42,16 +44,32 @@ pub(super) fn finish(work: &Remeshing, deviation: Option<f64>) -> (SurfaceMesh, 
         }
     }
     hard.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
-    let mesh = SurfaceMesh {
+    let diagonal = work.placer.surface.net().bbox_diagonal();
+    let mut mesh = without_curves(points, triangles, params, faces, deviation, diagonal);
+    mesh.hard_edges = hard.iter().map(|e| e.2).collect();
+    mesh.hard_edge_curves = hard.iter().map(|e| e.0).collect();
+    (mesh, kept)
+}
+
+/// A remesher's mesh from its arrays, its hard edges not yet listed, and
+/// without charts: its triangles span control triangles.
+pub(super) fn without_curves(
+    points: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    params: Vec<SurfacePoint>,
+    faces: Vec<u32>,
+    deviation: Option<f64>,
+    diagonal: f64,
+) -> SurfaceMesh {
+    SurfaceMesh {
         points,
         triangles,
         params,
         charts: Vec::new(),
         faces,
-        hard_edges: hard.iter().map(|e| e.2).collect(),
-        hard_edge_curves: hard.iter().map(|e| e.0).collect(),
+        hard_edges: Vec::new(),
+        hard_edge_curves: Vec::new(),
         deviation,
-        diagonal: work.placer.surface.net().bbox_diagonal(),
-    };
-    (mesh, kept)
+        diagonal,
+    }
 }

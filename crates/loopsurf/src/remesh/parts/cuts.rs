@@ -1,0 +1,158 @@
+//! The graph work of remeshing by parts: which vertices two parts share,
+//! which triangle goes to which part, rings around vertices and control
+//! triangles, fans at a vertex and connected blobs.
+
+use crate::net::ControlNet;
+use crate::topology::NONE;
+use std::collections::HashMap;
+
+/// Per vertex of a mesh: whether triangles of more than one part use it.
+pub(super) fn shared_vertices(triangles: &[[u32; 3]], owner: &[u32], n: usize) -> Vec<bool> {
+    let mut first = vec![NONE; n];
+    let mut shared = vec![false; n];
+    for (tri, &p) in triangles.iter().zip(owner) {
+        for &v in tri {
+            match first[v as usize] {
+                NONE => first[v as usize] = p,
+                q if q != p => shared[v as usize] = true,
+                _ => {}
+            }
+        }
+    }
+    shared
+}
+
+/// The part most of a triangle's three votes name (the first vote's
+/// when all differ).
+pub(super) fn majority([a, b, c]: [u32; 3]) -> u32 {
+    if b == c {
+        b
+    } else {
+        a
+    }
+}
+
+/// Per mesh vertex: whether it lies within `rings` edges of a vertex
+/// `seed` marks.
+pub(super) fn mesh_rings(triangles: &[[u32; 3]], seed: &[bool], rings: usize) -> Vec<bool> {
+    let mut near = seed.to_vec();
+    for _ in 0..rings {
+        let mut next = near.clone();
+        for tri in triangles {
+            if tri.iter().any(|&v| near[v as usize]) {
+                for &v in tri {
+                    next[v as usize] = true;
+                }
+            }
+        }
+        near = next;
+    }
+    near
+}
+
+/// Per control triangle: whether it lies within `rings` vertex rings of
+/// one of the triangles `seeds`.
+pub(super) fn control_rings(
+    net: &ControlNet,
+    seeds: impl Iterator<Item = u32>,
+    rings: usize,
+) -> Vec<bool> {
+    let topo = net.topology();
+    let mut near = vec![false; net.triangles().len()];
+    let mut front: Vec<u32> = seeds.collect();
+    for t in &front {
+        near[*t as usize] = true;
+    }
+    for _ in 0..rings {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &v in &net.triangles()[t as usize] {
+                for &u in topo.fan(v as usize) {
+                    if !near[u as usize] {
+                        near[u as usize] = true;
+                        next.push(u);
+                    }
+                }
+            }
+        }
+        front = next;
+    }
+    near
+}
+
+/// Per corner (3 per triangle) of a set of triangles: the fan it belongs
+/// to, named by one of the fan's corners. Two corners at one vertex are in
+/// one fan when a chain of triangles sharing edges at that vertex joins
+/// them.
+pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
+    let mut class: Vec<usize> = (0..3 * triangles.len()).collect();
+    fn root(class: &mut [usize], mut c: usize) -> usize {
+        while class[c] != c {
+            class[c] = class[class[c]];
+            c = class[c];
+        }
+        c
+    }
+    let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            // The corners of a and b in this triangle.
+            let (ca, cb) = (3 * t + k, 3 * t + (k + 1) % 3);
+            match edges.remove(&(b, a)) {
+                // The neighbour across runs b → a: its corner at b, then a.
+                Some(other) => {
+                    let (ob, oa) = (other, 3 * (other / 3) + (other % 3 + 1) % 3);
+                    for (x, y) in [(ca, oa), (cb, ob)] {
+                        let (rx, ry) = (root(&mut class, x), root(&mut class, y));
+                        class[rx.max(ry)] = rx.min(ry);
+                    }
+                }
+                None => {
+                    edges.insert((a, b), ca);
+                }
+            }
+        }
+    }
+    (0..class.len()).map(|c| root(&mut class, c)).collect()
+}
+
+/// The triangles with a vertex in `band`, each connected set of them (by
+/// band vertices) numbered: the number of each triangle ([`NONE`] outside
+/// the band, numbered in triangle order), and how many.
+pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) {
+    let mut class: Vec<usize> = (0..triangles.len()).collect();
+    fn root(class: &mut [usize], mut c: usize) -> usize {
+        while class[c] != c {
+            class[c] = class[class[c]];
+            c = class[c];
+        }
+        c
+    }
+    let mut first = vec![usize::MAX; band.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &v in tri.iter().filter(|&&v| band[v as usize]) {
+            match first[v as usize] {
+                usize::MAX => first[v as usize] = t,
+                u => {
+                    let (a, b) = (root(&mut class, u), root(&mut class, t));
+                    class[a.max(b)] = a.min(b);
+                }
+            }
+        }
+    }
+    let mut number = vec![NONE; triangles.len()];
+    let mut owner = vec![NONE; triangles.len()];
+    let mut count = 0;
+    for (t, tri) in triangles.iter().enumerate() {
+        if tri.iter().any(|&v| band[v as usize]) {
+            let r = root(&mut class, t);
+            if number[r] == NONE {
+                number[r] = count;
+                count += 1;
+            }
+            owner[t] = number[r];
+        }
+    }
+    (owner, count as usize)
+}
