@@ -26,14 +26,19 @@ fn remesh(surface: &Surface, k: usize, threads: usize) -> SurfaceMesh {
         })
 }
 
+/// A CGAL demo mesh, hard edges tagged above `angle`, and its surface.
+fn tagged(name: &str, angle: f64) -> Option<(ControlNet, Surface)> {
+    let mut net = ControlNet::read(common::cgal_mesh(name)?).unwrap();
+    net.tag_by_angle(angle).unwrap();
+    let surface = Surface::new(&net).unwrap();
+    Some((net, surface))
+}
+
 #[test]
 fn fandisk_in_parts_is_one_mesh_on_the_whole_surface() {
-    let Some(path) = common::cgal_mesh("fandisk.off") else {
+    let Some((net, surface)) = tagged("fandisk.off", 30.0) else {
         return;
     };
-    let mut net = ControlNet::read(&path).unwrap();
-    net.tag_by_angle(30.0).unwrap();
-    let surface = Surface::new(&net).unwrap();
     let diagonal = net.bbox_diagonal();
     let whole = remesh(&surface, 1, 2);
     let whole_quality = whole.quality();
@@ -150,12 +155,9 @@ fn boundary_loops(mesh: &SurfaceMesh, what: &str) -> usize {
 /// bits on one thread and on two.
 #[test]
 fn an_open_creased_surface_in_parts_has_the_whole_runs_boundary() {
-    let Some(path) = common::cgal_mesh("pig.off") else {
+    let Some((net, surface)) = tagged("pig.off", 40.0) else {
         return;
     };
-    let mut net = ControlNet::read(&path).unwrap();
-    net.tag_by_angle(40.0).unwrap();
-    let surface = Surface::new(&net).unwrap();
     let whole = remesh(&surface, 1, 2);
     let parts = remesh(&surface, 5, 2);
     let serial = remesh(&surface, 5, 1);

@@ -86,13 +86,6 @@ pub(super) fn control_rings(
 /// them.
 pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
     let mut class: Vec<usize> = (0..3 * triangles.len()).collect();
-    fn root(class: &mut [usize], mut c: usize) -> usize {
-        while class[c] != c {
-            class[c] = class[class[c]];
-            c = class[c];
-        }
-        c
-    }
     let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * triangles.len());
     for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
@@ -103,10 +96,8 @@ pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
                 // The neighbour across runs b → a: its corner at b, then a.
                 Some(other) => {
                     let (ob, oa) = (other, 3 * (other / 3) + (other % 3 + 1) % 3);
-                    for (x, y) in [(ca, oa), (cb, ob)] {
-                        let (rx, ry) = (root(&mut class, x), root(&mut class, y));
-                        class[rx.max(ry)] = rx.min(ry);
-                    }
+                    unite(&mut class, ca, oa);
+                    unite(&mut class, cb, ob);
                 }
                 None => {
                     edges.insert((a, b), ca);
@@ -122,22 +113,12 @@ pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
 /// the band, numbered in triangle order), and how many.
 pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) {
     let mut class: Vec<usize> = (0..triangles.len()).collect();
-    fn root(class: &mut [usize], mut c: usize) -> usize {
-        while class[c] != c {
-            class[c] = class[class[c]];
-            c = class[c];
-        }
-        c
-    }
     let mut first = vec![usize::MAX; band.len()];
     for (t, tri) in triangles.iter().enumerate() {
         for &v in tri.iter().filter(|&&v| band[v as usize]) {
             match first[v as usize] {
                 usize::MAX => first[v as usize] = t,
-                u => {
-                    let (a, b) = (root(&mut class, u), root(&mut class, t));
-                    class[a.max(b)] = a.min(b);
-                }
+                u => unite(&mut class, u, t),
             }
         }
     }
@@ -155,4 +136,20 @@ pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) 
         }
     }
     (owner, count as usize)
+}
+
+/// The root of c's set in the union-find array `class`, its path halved.
+fn root(class: &mut [usize], mut c: usize) -> usize {
+    while class[c] != c {
+        class[c] = class[class[c]];
+        c = class[c];
+    }
+    c
+}
+
+/// Joins the sets of a and b under the smaller root, so that roots (and
+/// what is numbered by them) do not depend on the order of the joins.
+fn unite(class: &mut [usize], a: usize, b: usize) {
+    let (ra, rb) = (root(class, a), root(class, b));
+    class[ra.max(rb)] = ra.min(rb);
 }
