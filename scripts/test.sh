@@ -38,6 +38,13 @@ if ! python3 -c "import meshio" 2>/dev/null; then
     python3 -m pip install --quiet meshio >/dev/null 2>&1 || echo "meshio could not be installed: the tests that check our files with it will fail (LOOPSURF_SKIP_DATA=1 skips them)"
 fi
 
+# gmsh, from PyPI, which tetrahedralizes the volumes our meshes bound: a
+# surface that crosses itself is refused (the volume test fails without it
+# unless LOOPSURF_SKIP_DATA=1 asks to skip).
+if ! python3 -c "import gmsh" 2>/dev/null; then
+    python3 -m pip install --quiet gmsh >/dev/null 2>&1 || echo "gmsh could not be installed: the volume test will fail (LOOPSURF_SKIP_DATA=1 skips it)"
+fi
+
 cargo test --workspace --release
 
 if [ -f CMakeLists.txt ]; then

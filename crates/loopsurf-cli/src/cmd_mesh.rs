@@ -105,6 +105,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         spinner.finish_and_clear();
         Some(d)
     };
+    let crossings = mesh.crossings();
     let checked = start.elapsed().as_secs_f64();
     // A .msh and any order above 1 go out as Lagrange elements.
     let curved = if args.order > 1 || CurvedFormat::of(&args.output) == Some(CurvedFormat::Msh) {
@@ -125,9 +126,19 @@ pub fn run(args: Args) -> Result<(), Error> {
         total: start.elapsed().as_secs_f64(),
     };
     warn_of_surface_folds(&surface, &mesh);
+    warn_of_crossings(&mesh, &crossings);
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
         summary(out, &mesh, &times, snapped)?;
+        writeln!(
+            out,
+            "crossings: {}",
+            match crossings.len() {
+                0 => "none (no two triangles meet but at the vertices and edges they share)"
+                    .to_string(),
+                n => format!("{n} pairs of triangles meet (see the warning)"),
+            }
+        )?;
         if let Some((curved, validity)) = &curved {
             curved_output::summary(out, curved, validity)?;
         }
@@ -383,5 +394,39 @@ fn warn_of_surface_folds(surface: &Surface, mesh: &SurfaceMesh) {
         if folded.len() == 1 { "" } else { "s" },
         shown.join(", "),
         if folded.len() > 8 { ", ..." } else { "" }
+    );
+}
+
+/// Says on stderr where the mesh crosses itself, so that the user hears
+/// it before a volume mesher refuses the surface: how many pairs of
+/// triangles meet, and where the first few lie (their control triangles).
+fn warn_of_crossings(mesh: &SurfaceMesh, crossings: &[[u32; 2]]) {
+    if crossings.is_empty() {
+        return;
+    }
+    let mut under: Vec<u32> = crossings
+        .iter()
+        .flatten()
+        .flat_map(|&t| mesh.triangles[t as usize].map(|v| mesh.params[v as usize].tri))
+        .collect();
+    under.sort_unstable();
+    under.dedup();
+    let shown: Vec<String> = under.iter().take(8).map(|t| t.to_string()).collect();
+    let [a, b] = crossings[0];
+    let at = mesh.triangles[a as usize]
+        .iter()
+        .map(|&v| mesh.points[v as usize])
+        .sum::<loopsurf::DVec3>()
+        / 3.0;
+    eprintln!(
+        "loopsurf: warning: the mesh crosses itself: {} pair{} of triangles meet (the first, {a} and {b}, near ({:.6}, {:.6}, {:.6})), over control triangle{} {}{}; a volume mesher will refuse it",
+        crossings.len(),
+        if crossings.len() == 1 { "" } else { "s" },
+        at.x,
+        at.y,
+        at.z,
+        if under.len() == 1 { "" } else { "s" },
+        shown.join(", "),
+        if under.len() > 8 { ", ..." } else { "" }
     );
 }

@@ -155,7 +155,7 @@ fn boundary_loops(mesh: &SurfaceMesh, what: &str) -> usize {
 /// bits on one thread and on two.
 #[test]
 fn an_open_creased_surface_in_parts_has_the_whole_runs_boundary() {
-    let Some((net, surface)) = tagged("pig.off", 40.0) else {
+    let Some((_, surface)) = tagged("pig.off", 40.0) else {
         return;
     };
     let whole = remesh(&surface, 1, 2);

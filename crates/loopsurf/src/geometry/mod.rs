@@ -6,6 +6,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+pub mod crossings;
 pub(crate) mod swap;
 
 /// An absent index: the missing triangle beside a boundary edge, a

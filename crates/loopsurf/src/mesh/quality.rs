@@ -71,6 +71,13 @@ impl SurfaceMesh {
             .collect()
     }
 
+    /// The pairs of triangles that cross (meet anywhere but in the
+    /// vertices and edges they share; see [`crate::geometry::crossings`]):
+    /// a volume mesher refuses a surface with one.
+    pub fn crossings(&self) -> Vec<[u32; 2]> {
+        crate::geometry::crossings::crossings(&self.points, &self.triangles)
+    }
+
     /// Minimum and mean angles and the worst shape.
     pub fn quality(&self) -> MeshQuality {
         let q = self.triangle_quality();

@@ -52,37 +52,14 @@ impl Remeshing<'_> {
     /// Whether h's edge may collapse with `remove` merging into the other
     /// end (see [`Remeshing::collapse_short`]).
     fn can_collapse(&mut self, h: u32, remove: u32) -> bool {
-        let label = self.mesh.edge_label[h as usize];
+        if !self.collapse_allowed(h, remove) {
+            return false;
+        }
         let keep = if self.mesh.origin(h) == remove {
             self.mesh.dest(h)
         } else {
             self.mesh.origin(h)
         };
-        if self.is_pinned(remove) {
-            return false;
-        }
-        match self.vertices[remove as usize].kind {
-            Kind::Corner { .. } => return false,
-            Kind::Curve { curve, .. } if label != curve => return false,
-            Kind::Free if label != NONE => return false,
-            _ => {}
-        }
-        // Two labelled sides of one triangle would merge into one edge.
-        let g = self.mesh.opposite(h);
-        for e in [h, g] {
-            if e != NONE
-                && self.mesh.edge_label[next(e) as usize] != NONE
-                && self.mesh.edge_label[prev(e) as usize] != NONE
-            {
-                return false;
-            }
-        }
-        let mut scratch = std::mem::take(&mut self.scratch);
-        let topological = self.mesh.can_collapse(h, &mut scratch);
-        self.scratch = scratch;
-        if !topological {
-            return false;
-        }
         // The triangles around `remove` other than the two on the edge,
         // with `keep` in its place.
         let x = self.vertices[keep as usize].x;
@@ -126,5 +103,36 @@ impl Remeshing<'_> {
             }
         }
         true
+    }
+
+    /// Whether the features and the topology let h's edge collapse with
+    /// `remove` merging into the other end: `remove` is neither pinned nor
+    /// a corner, and on a curve only along it; no triangle would get two
+    /// labelled sides on one edge; the mesh stays a manifold.
+    pub(super) fn collapse_allowed(&mut self, h: u32, remove: u32) -> bool {
+        let label = self.mesh.edge_label[h as usize];
+        if self.is_pinned(remove) {
+            return false;
+        }
+        match self.vertices[remove as usize].kind {
+            Kind::Corner { .. } => return false,
+            Kind::Curve { curve, .. } if label != curve => return false,
+            Kind::Free if label != NONE => return false,
+            _ => {}
+        }
+        // Two labelled sides of one triangle would merge into one edge.
+        let g = self.mesh.opposite(h);
+        for e in [h, g] {
+            if e != NONE
+                && self.mesh.edge_label[next(e) as usize] != NONE
+                && self.mesh.edge_label[prev(e) as usize] != NONE
+            {
+                return false;
+            }
+        }
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let topological = self.mesh.can_collapse(h, &mut scratch);
+        self.scratch = scratch;
+        topological
     }
 }

@@ -58,6 +58,7 @@ mod sizing;
 mod split;
 mod start;
 mod tolerance;
+mod untangle;
 mod validity;
 mod vertices;
 
@@ -284,6 +285,8 @@ fn remesh(
         }
         shrinking.shrink_where_missed(work, &errors, tol);
     }
+    let untangled = work.untangle(tolerance);
+    let deviation = deviation.map(|d| d.max(untangled));
     Ok((deviation, shrinking.factors().to_vec()))
 }
 
