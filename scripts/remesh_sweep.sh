@@ -4,8 +4,9 @@
 #   loopsurf mesh FILE --repair --hard-angle 40 --adapt curvature
 # one thread, 120 s each, one markdown row per mesh: output triangles,
 # time, min angle, mean-min, share below 20° (and how many of those the
-# summary calls forced by features), the chord error, and the warnings
-# (folds of the net or of the surface, the tolerance missed).
+# summary calls forced by features), the chord error, the pairs of
+# triangles that cross, and the warnings (folds of the net or of the
+# surface, the tolerance missed).
 # Usage: bash scripts/remesh_sweep.sh [DATA_DIR]  (default: the test cache)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -14,8 +15,8 @@ max=${MAX_TRIANGLES:-30000}
 cargo build --release -q -p loopsurf-cli || exit 2
 out=$(mktemp --suffix=.off)
 trap 'rm -f "$out"' EXIT
-echo "| mesh | control faces | triangles | time | min | mean-min | below 20° (forced) | chord error | warnings |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| mesh | control faces | triangles | time | min | mean-min | below 20° (forced) | chord error | crossing pairs | warnings |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for f in "$data"/*.off; do
     name=$(basename "$f")
     # The triangle count: the second number of the OFF header.
@@ -28,7 +29,7 @@ for f in "$data"/*.off; do
     rc=$?
     if [ $rc -ne 0 ]; then
         why=$([ $rc -eq 124 ] && echo "over 120 s" || echo "$log" | tail -1 | cut -c1-120)
-        echo "| $name | $n | failed: $why | | | | | | |"
+        echo "| $name | $n | failed: $why | | | | | | | |"
         continue
     fi
     tri=$(echo "$log" | grep -oP '^output: .*?, \K[0-9]+(?= triangles)')
@@ -38,7 +39,7 @@ for f in "$data"/*.off; do
     below=$(echo "$log" | grep -oP '[0-9.]+% of triangles below 20° \(\K[0-9]+' )
     share=$(echo "$log" | grep -oP '\K[0-9.]+(?=% of triangles below 20°)')
     dev=$(echo "$log" | grep -oP '[0-9.e-]+(?= by snap)')
-    warn=$(echo "$log" | grep -c 'warning')
+    crossing=$(echo "$log" | grep -oP '^crossings: \K([0-9]+|none)')
     what=$(echo "$log" | grep -oP 'warning: \K(the net folds|triangles below 10° lie where the surface folds|chord tolerance)' | sort -u | tr '\n' ';')
-    echo "| $name | $n | $tri | ${secs} s | ${min}° | ${mean}° | ${share}% ($below) | $dev | ${what%;} |"
+    echo "| $name | $n | $tri | ${secs} s | ${min}° | ${mean}° | ${share}% ($below) | $dev | ${crossing/none/0} | ${what%;} |"
 done
