@@ -47,13 +47,24 @@ pub fn crossings(points: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
 /// Whether triangles `s` and `t` (vertex ids into `points`) cross.
 pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
     let p = |v: u32| points[v as usize];
-    let shared: Vec<(usize, usize)> = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .filter(|&(i, j)| s[i] == t[j])
-        .collect();
-    match shared[..] {
+    // The corners the triangles share, as (index in s, index in t): most
+    // pairs the tree offers are neighbours, so no allocation here.
+    let mut shared = [(0, 0); 9];
+    let mut count = 0;
+    for i in 0..3 {
+        for j in 0..3 {
+            if s[i] == t[j] {
+                shared[count] = (i, j);
+                count += 1;
+            }
+        }
+    }
+    match shared[..count] {
         [] => {
             let (a, b) = (s.map(p), t.map(p));
+            if strictly_beside(a, &b) || strictly_beside(b, &a) {
+                return false;
+            }
             edges(a).any(|(x, y)| segment_meets_triangle(x, y, b))
                 || edges(b).any(|(x, y)| segment_meets_triangle(x, y, a))
         }
@@ -63,6 +74,12 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
         // its opposite side, inside the other).
         [(i, j)] => {
             let (a, b) = (s.map(p), t.map(p));
+            // Either's other corners strictly on one side of the other's
+            // plane: the planes' common line leaves that triangle at once.
+            let others = |x: [DVec3; 3], k: usize| [x[(k + 1) % 3], x[(k + 2) % 3]];
+            if strictly_beside(a, &others(b, j)) || strictly_beside(b, &others(a, i)) {
+                return false;
+            }
             segment_meets_triangle(a[(i + 1) % 3], a[(i + 2) % 3], b)
                 || segment_meets_triangle(b[(j + 1) % 3], b[(j + 2) % 3], a)
         }
@@ -83,6 +100,18 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
         }
         // The same triangle twice.
         _ => true,
+    }
+}
+
+/// Whether `points` all lie strictly on one side of triangle `t`'s plane
+/// (false for a triangle without area, whose plane is not defined).
+fn strictly_beside(t: [DVec3; 3], points: &[DVec3]) -> bool {
+    let side = |q: &DVec3| orient3d(c3(t[0]), c3(t[1]), c3(t[2]), c3(*q));
+    let mut sides = points.iter().map(side);
+    match sides.next() {
+        Some(first) if first > 0.0 => sides.all(|o| o > 0.0),
+        Some(first) if first < 0.0 => sides.all(|o| o < 0.0),
+        _ => false,
     }
 }
 
@@ -277,8 +306,13 @@ impl BoxTree {
 
     /// Calls `found` with every item whose box overlaps `query`.
     pub(crate) fn overlapping(&self, query: &Box3, mut found: impl FnMut(usize)) {
-        let mut stack = vec![0];
-        while let Some(n) = stack.pop() {
+        // Depth-first: the stack holds at most one node per level, and a
+        // median split of u32-many items has fewer than 64 levels.
+        let mut stack = [0usize; 64];
+        let mut depth = 1;
+        while depth > 0 {
+            depth -= 1;
+            let n = stack[depth];
             let Some(node) = self.nodes.get(n) else {
                 continue;
             };
@@ -290,8 +324,9 @@ impl BoxTree {
                     .iter()
                     .for_each(|&i| found(i));
             } else {
-                stack.push(node.second);
-                stack.push(n + 1);
+                stack[depth] = node.second;
+                stack[depth + 1] = n + 1;
+                depth += 2;
             }
         }
     }
