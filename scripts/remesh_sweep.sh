@@ -5,8 +5,9 @@
 # one thread, 120 s each, one markdown row per mesh: output triangles,
 # time, min angle, mean-min, share below 20° (and how many of those the
 # summary calls forced by features), the chord error, the pairs of
-# triangles that cross, and the warnings (folds of the net or of the
-# surface, the tolerance missed).
+# triangles that cross (and of the control net's, where the mesh's do),
+# and the warnings (folds of the net or of the surface, the tolerance
+# missed).
 # Usage: bash scripts/remesh_sweep.sh [DATA_DIR]  (default: the test cache)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -40,6 +41,8 @@ for f in "$data"/*.off; do
     share=$(echo "$log" | grep -oP '\K[0-9.]+(?=% of triangles below 20°)')
     dev=$(echo "$log" | grep -oP '[0-9.e-]+(?= by snap)')
     crossing=$(echo "$log" | grep -oP '^crossings: \K([0-9]+|none)')
+    in_net=$(echo "$log" | grep -oP 'the control net itself crosses in \K[0-9]+')
+    [ -n "$in_net" ] && crossing="$crossing (net $in_net)"
     what=$(echo "$log" | grep -oP 'warning: \K(the net folds|triangles below 10° lie where the surface folds|chord tolerance)' | sort -u | tr '\n' ';')
     echo "| $name | $n | $tri | ${secs} s | ${min}° | ${mean}° | ${share}% ($below) | $dev | ${crossing/none/0} | ${what%;} |"
 done

@@ -126,7 +126,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         total: start.elapsed().as_secs_f64(),
     };
     warn_of_surface_folds(&surface, &mesh);
-    warn_of_crossings(&mesh, &crossings);
+    warn_of_crossings(&surface, &mesh, &crossings);
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
         summary(out, &mesh, &times, snapped)?;
@@ -399,11 +399,22 @@ fn warn_of_surface_folds(surface: &Surface, mesh: &SurfaceMesh) {
 
 /// Says on stderr where the mesh crosses itself, so that the user hears
 /// it before a volume mesher refuses the surface: how many pairs of
-/// triangles meet, and where the first few lie (their control triangles).
-fn warn_of_crossings(mesh: &SurfaceMesh, crossings: &[[u32; 2]]) {
+/// triangles meet, where the first few lie (their control triangles), and
+/// whether the control net crosses itself too (then its surface most
+/// likely does, and the input is what to look at).
+fn warn_of_crossings(surface: &Surface, mesh: &SurfaceMesh, crossings: &[[u32; 2]]) {
     if crossings.is_empty() {
         return;
     }
+    let net = surface.net();
+    let in_net = loopsurf::geometry::crossings::crossings(net.points(), net.triangles()).len();
+    let net_too = match in_net {
+        0 => String::new(),
+        n => format!(
+            " (the control net itself crosses in {n} pair{})",
+            if n == 1 { "" } else { "s" }
+        ),
+    };
     let mut under: Vec<u32> = crossings
         .iter()
         .flatten()
@@ -419,7 +430,7 @@ fn warn_of_crossings(mesh: &SurfaceMesh, crossings: &[[u32; 2]]) {
         .sum::<loopsurf::DVec3>()
         / 3.0;
     eprintln!(
-        "loopsurf: warning: the mesh crosses itself: {} pair{} of triangles meet (the first, {a} and {b}, near ({:.6}, {:.6}, {:.6})), over control triangle{} {}{}; a volume mesher will refuse it",
+        "loopsurf: warning: the mesh crosses itself: {} pair{} of triangles meet (the first, {a} and {b}, near ({:.6}, {:.6}, {:.6})), over control triangle{} {}{}{net_too}; a volume mesher will refuse it",
         crossings.len(),
         if crossings.len() == 1 { "" } else { "s" },
         at.x,
