@@ -2,7 +2,9 @@
 //! the remesher's cases: CGAL pig at 0.5% of the control net's diagonal
 //! (hard edges at 40°) and the built-in Viking at 1% (30°), single thread
 //! and all threads. The surface is built once outside the loop (its cost is
-//! the eval bench's).
+//! the eval bench's). Also the check for crossing triangles, which the
+//! remesher's last pass and `loopsurf mesh` each run once on a clean
+//! mesh: on pig's output, on one thread.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use loopsurf::{examples, ControlNet, Remesher, Surface};
@@ -53,6 +55,9 @@ fn remesh(c: &mut Criterion) {
         });
         group.bench_function(format!("{name}_all_threads"), |b| {
             b.iter(|| remesher.run().unwrap())
+        });
+        group.bench_function(format!("{name}_crossings_1_thread"), |b| {
+            b.iter(|| single.install(|| mesh.crossings()))
         });
     };
     if let Some(pig) = cgal("pig.off") {
