@@ -14,7 +14,12 @@
 //!
 //! **Fast.** Candidate pairs come from a bounding-box tree over the
 //! triangles, queried in parallel; the answer is sorted, so it is the same
-//! for any thread count.
+//! for any thread count. Most candidates are neighbours, which a
+//! floating-point test with a wide margin tells apart first (a side of
+//! one whose plane has the other beyond it); only what it cannot settle
+//! goes to the exact predicates, whose slow path coplanar neighbours on a
+//! flat face would take (fandisk's 343 386 triangles at 0.4%: 0.51 s on
+//! one thread, 1.44 s without it).
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -51,9 +56,9 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
     // pairs the tree offers are neighbours, so no allocation here.
     let mut shared = [(0, 0); 9];
     let mut count = 0;
-    for i in 0..3 {
-        for j in 0..3 {
-            if s[i] == t[j] {
+    for (i, a) in s.iter().enumerate() {
+        for (j, b) in t.iter().enumerate() {
+            if a == b {
                 shared[count] = (i, j);
                 count += 1;
             }
@@ -62,6 +67,12 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
     match shared[..count] {
         [] => {
             let (a, b) = (s.map(p), t.map(p));
+            let sides = |x: [DVec3; 3], y: [DVec3; 3]| {
+                (0..3).any(|k| side_separates(x[k], x[(k + 1) % 3], x[(k + 2) % 3], x, &y))
+            };
+            if sides(a, b) || sides(b, a) {
+                return false;
+            }
             if strictly_beside(a, &b) || strictly_beside(b, &a) {
                 return false;
             }
@@ -77,6 +88,16 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
             // Either's other corners strictly on one side of the other's
             // plane: the planes' common line leaves that triangle at once.
             let others = |x: [DVec3; 3], k: usize| [x[(k + 1) % 3], x[(k + 2) % 3]];
+            // A side through the common corner that has the other
+            // triangle's other corners beyond it (neighbours in a fan,
+            // flat or not), decided in floating point with a margin.
+            let sides = |x: [DVec3; 3], k: usize, y: &[DVec3; 2]| {
+                let (c, u, w) = (x[k], x[(k + 1) % 3], x[(k + 2) % 3]);
+                side_separates(c, u, w, x, y) || side_separates(c, w, u, x, y)
+            };
+            if sides(a, i, &others(b, j)) || sides(b, j, &others(a, i)) {
+                return false;
+            }
             if strictly_beside(a, &others(b, j)) || strictly_beside(b, &others(a, i)) {
                 return false;
             }
@@ -91,6 +112,13 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
                 p(s[k]),
                 p(t.into_iter().find(|v| !s.contains(v)).unwrap_or(t[0])),
             );
+            // On opposite sides of the edge (as in any fan; flat faces
+            // would otherwise take the exact predicates' slow path):
+            // folded flat onto each other their normals would agree.
+            let (n1, n2) = ((y - x).cross(a - x), (y - x).cross(b - x));
+            if n1.dot(n2) < -MARGIN * n1.length() * n2.length() {
+                return false;
+            }
             if orient3d(c3(x), c3(y), c3(a), c3(b)) != 0.0 {
                 return false;
             }
@@ -101,6 +129,31 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
         // The same triangle twice.
         _ => true,
     }
+}
+
+/// The share of a product of lengths that a floating-point sign test must
+/// clear to be trusted: far above the few units of round-off in the
+/// last place that a cross and a dot product make.
+const MARGIN: f64 = 1e-9;
+
+/// Whether the plane through the side c–u of triangle `t` (whose third
+/// corner is `w`), square to `t`, has all of `points` strictly on the
+/// side away from w: then `t` (on w's side, or on the plane) and the
+/// triangle of those points meet at most in what lies on that plane. A
+/// floating-point test that answers yes only with [`MARGIN`] to spare,
+/// so never wrongly; no otherwise (then the exact tests decide).
+fn side_separates(c: DVec3, u: DVec3, w: DVec3, t: [DVec3; 3], points: &[DVec3]) -> bool {
+    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+    let m = (u - c).cross(normal);
+    let scale = m.length();
+    let toward = m.dot(w - c);
+    if !(toward.abs() > MARGIN * scale * (w - c).length()) {
+        return false;
+    }
+    points.iter().all(|&x| {
+        let away = -toward.signum() * m.dot(x - c);
+        away > MARGIN * scale * (x - c).length()
+    })
 }
 
 /// Whether `points` all lie strictly on one side of triangle `t`'s plane
