@@ -1,9 +1,9 @@
 //! The last pass: where the mesh crosses itself, vertices removed until it
 //! does not, so that it bounds a volume.
 //!
-//! **Why a mesh of a surface that does not cross itself can cross.** Next to an
-//! irregular corner the limit surface can fold into a pleat thinner than
-//! the chord tolerance (joint.off at its valence-16 corner: a Z-fold 5e-4
+//! **Why a mesh of a surface that does not cross itself can cross.** Next
+//! to an irregular corner the limit surface can fold into a pleat thinner
+//! than the chord tolerance (joint.off at its valence-16 corner: a Z-fold 5e-4
 //! of the diagonal thick, its normal flipping). Every vertex lies on the
 //! surface and every triangle faces the way the surface does at its
 //! corners, so the triangles on the pleat's three layers follow it; being
@@ -20,9 +20,9 @@
 //! tolerance of the surface, and have no angle below both 20° and the
 //! smallest of those removed. Where pairs are left, a second stage lifts
 //! the angle floor for vertices on a fold of the surface under a chord
-//! tolerance: the triangles there are as poor as the fold makes them. Where the surface
-//! itself crosses, no removal helps; those pairs stay, and the caller
-//! hears of them.
+//! tolerance: the triangles there are as poor as the fold makes them.
+//! Where the surface itself crosses, no removal helps; those pairs stay,
+//! and the caller hears of them.
 
 use super::connectivity::prev;
 use super::remeshing::Remeshing;
@@ -57,14 +57,21 @@ impl Remeshing<'_> {
         // tolerance. In that order mech-holes-shark keeps 4 pairs at its
         // fin; 15 with the floor everywhere, 28 with it lifted on folds
         // from the start (joint.off: 7, 0 and 0).
-        let strict = self.untangle_rounds(tolerance, false);
-        strict.max(self.untangle_rounds(tolerance, tolerance.is_some()))
+        // A clean mesh is searched once.
+        let (strict, left) = self.untangle_rounds(tolerance, false);
+        if left == 0 || tolerance.is_none() {
+            return strict;
+        }
+        strict.max(self.untangle_rounds(tolerance, true).0)
     }
 
     /// Rounds of [`Remeshing::untangle`], the angle floor lifted on folds
-    /// if `on_folds`.
-    fn untangle_rounds(&mut self, tolerance: Option<f64>, on_folds: bool) -> f64 {
+    /// if `on_folds`: the largest chord error of a triangle made, and how
+    /// many pairs the last search found (more may be left where its
+    /// round removed none).
+    fn untangle_rounds(&mut self, tolerance: Option<f64>, on_folds: bool) -> (f64, usize) {
         let mut worst: f64 = 0.0;
+        let mut left = 0;
         for _ in 0..ROUNDS {
             let slots: Vec<u32> = (0..self.mesh.num_half_edges() / 3)
                 .filter(|&t| self.mesh.is_alive(3 * t))
@@ -73,6 +80,7 @@ impl Remeshing<'_> {
                 slots.iter().map(|&t| self.mesh.corners(3 * t)).collect();
             let points: Vec<DVec3> = self.vertices.iter().map(|v| v.x).collect();
             let pairs = crossings(&points, &triangles);
+            left = pairs.len();
             if pairs.is_empty() {
                 break;
             }
@@ -122,7 +130,7 @@ impl Remeshing<'_> {
                 break;
             }
         }
-        worst
+        (worst, left)
     }
 
     /// The collapse of an edge out of `v` that removes v best: its
