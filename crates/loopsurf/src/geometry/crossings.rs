@@ -21,6 +21,7 @@
 //! flat face would take (fandisk's 343 386 triangles at 0.4%: 0.51 s on
 //! one thread, 1.44 s without it).
 
+use super::{area_normal, largest_axis};
 use glam::DVec3;
 use rayon::prelude::*;
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -68,7 +69,8 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
         [] => {
             let (a, b) = (s.map(p), t.map(p));
             let sides = |x: [DVec3; 3], y: [DVec3; 3]| {
-                (0..3).any(|k| side_separates(x[k], x[(k + 1) % 3], x[(k + 2) % 3], x, &y))
+                let normal = area_normal(x);
+                (0..3).any(|k| side_separates(x, normal, k, &y))
             };
             if sides(a, b) || sides(b, a) {
                 return false;
@@ -92,8 +94,8 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
             // triangle's other corners beyond it (neighbours in a fan,
             // flat or not), decided in floating point with a margin.
             let sides = |x: [DVec3; 3], k: usize, y: &[DVec3; 2]| {
-                let (c, u, w) = (x[k], x[(k + 1) % 3], x[(k + 2) % 3]);
-                side_separates(c, u, w, x, y) || side_separates(c, w, u, x, y)
+                let normal = area_normal(x);
+                side_separates(x, normal, k, y) || side_separates(x, normal, (k + 2) % 3, y)
             };
             if sides(a, i, &others(b, j)) || sides(b, j, &others(a, i)) {
                 return false;
@@ -136,14 +138,15 @@ pub(crate) fn cross(points: &[DVec3], s: [u32; 3], t: [u32; 3]) -> bool {
 /// last place that a cross and a dot product make.
 const MARGIN: f64 = 1e-9;
 
-/// Whether the plane through the side c–u of triangle `t` (whose third
-/// corner is `w`), square to `t`, has all of `points` strictly on the
-/// side away from w: then `t` (on w's side, or on the plane) and the
-/// triangle of those points meet at most in what lies on that plane. A
-/// floating-point test that answers yes only with [`MARGIN`] to spare,
-/// so never wrongly; no otherwise (then the exact tests decide).
-fn side_separates(c: DVec3, u: DVec3, w: DVec3, t: [DVec3; 3], points: &[DVec3]) -> bool {
-    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+/// Whether the plane through side k of triangle `t` (from corner k to the
+/// next), square to `t` (whose [`area_normal`] is `normal`), has all of
+/// `points` strictly on the side away from its third corner: then `t` (on
+/// that corner's side, or on the plane) and the triangle of those points
+/// meet at most in what lies on that plane. A floating-point test that
+/// answers yes only with [`MARGIN`] to spare, so never wrongly; no
+/// otherwise (then the exact tests decide).
+fn side_separates(t: [DVec3; 3], normal: DVec3, k: usize, points: &[DVec3]) -> bool {
+    let (c, u, w) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
     let m = (u - c).cross(normal);
     let scale = m.length();
     let toward = m.dot(w - c);
@@ -194,11 +197,8 @@ fn segment_meets_triangle(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
 /// [`segment_meets_triangle`] when all five points lie in one plane:
 /// in 2D, dropping the coordinate that plane is steepest along.
 fn coplanar_segment_meets_triangle(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
-    let drop = match dominant_axis(a, b, c) {
-        // A triangle with no area: any axis the segment does not run along.
-        None => least_axis(q - p),
-        some => some,
-    };
+    // A triangle with no area: any axis the segment does not run along.
+    let drop = dominant_axis(a, b, c).or(Some(least_axis(q - p)));
     let [p, q, a, b, c] = [p, q, a, b, c].map(|x| c2(x, drop));
     let inside = |x: Coord<f64>| {
         let o = [(a, b), (b, c), (c, a)].map(|(u, v)| orient2d(u, v, x));
@@ -231,25 +231,14 @@ fn segments_meet_2d(p: Coord<f64>, q: Coord<f64>, u: Coord<f64>, v: Coord<f64>) 
 /// it projects the triangle without flattening it. `None` when the
 /// triangle has no area in floating point.
 fn dominant_axis(a: DVec3, b: DVec3, c: DVec3) -> Option<usize> {
-    let n = (b - a).cross(c - a).abs();
+    let n = area_normal([a, b, c]).abs();
     (n != DVec3::ZERO).then(|| largest_axis(n))
-}
-
-/// The axis along which `d` is largest (the first of equals).
-fn largest_axis(d: DVec3) -> usize {
-    if d.x >= d.y && d.x >= d.z {
-        0
-    } else if d.y >= d.z {
-        1
-    } else {
-        2
-    }
 }
 
 /// The axis a direction is smallest along (dropping it keeps a segment a
 /// segment).
-fn least_axis(d: DVec3) -> Option<usize> {
-    Some(largest_axis(-d.abs()))
+fn least_axis(d: DVec3) -> usize {
+    largest_axis(-d.abs())
 }
 
 fn c3(p: DVec3) -> Coord3D<f64> {

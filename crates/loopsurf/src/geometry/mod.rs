@@ -73,6 +73,18 @@ pub fn is_degenerate(triangle: [DVec3; 3]) -> bool {
     twice_area <= 1e-14 * longest
 }
 
+/// The axis along which `d` is largest (the first of equals): the one a
+/// median split of boxes cuts, the one a triangle's normal says to drop.
+pub(crate) fn largest_axis(d: DVec3) -> usize {
+    if d.x >= d.y && d.x >= d.z {
+        0
+    } else if d.y >= d.z {
+        1
+    } else {
+        2
+    }
+}
+
 /// The largest cosine of a triangle's angles (the cosine of its smallest
 /// angle); degenerate triangles count as 1.
 pub fn max_cosine(a: DVec3, b: DVec3, c: DVec3) -> f64 {

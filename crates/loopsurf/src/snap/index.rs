@@ -243,14 +243,7 @@ fn hierarchy(boxes: &[(DVec3, DVec3)], mut patches: Vec<u32>) -> Vec<BoxNode> {
                 .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &t| {
                     (lo.min(centre(t)), hi.max(centre(t)))
                 });
-            let extent = chi - clo;
-            let axis = if extent.x >= extent.y && extent.x >= extent.z {
-                0
-            } else if extent.y >= extent.z {
-                1
-            } else {
-                2
-            };
+            let axis = crate::geometry::largest_axis(chi - clo);
             let half = patches.len() / 2;
             patches
                 .select_nth_unstable_by(half, |&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]));
