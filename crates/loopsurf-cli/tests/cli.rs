@@ -687,20 +687,16 @@ fn a_mesh_of_a_folded_surface_says_where_it_folds() {
 
 #[test]
 fn a_mesh_that_crosses_itself_says_so_and_names_a_crossing_net() {
-    // Two octahedra, the second shifted by a third of the first's size:
-    // their nets and surfaces pierce each other.
-    let octahedron = |dx: f64| {
-        [
-            [1.0, 0.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, -1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-        ]
-        .map(|[x, y, z]: [f64; 3]| format!("{} {y} {z}\n", x + dx))
-        .concat()
-    };
+    // Octahedra, the second shifted by a third of the first's size: their
+    // nets and surfaces pierce each other. One alone is clean.
+    let corners = [
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
     let faces = [
         [0, 2, 4],
         [2, 1, 4],
@@ -711,25 +707,37 @@ fn a_mesh_that_crosses_itself_says_so_and_names_a_crossing_net() {
         [3, 1, 5],
         [0, 3, 5],
     ];
-    let mut off = format!("OFF\n12 16 0\n{}{}", octahedron(0.0), octahedron(0.6));
-    for shift in [0, 6] {
-        for f in faces {
-            off += &format!("3 {} {} {}\n", f[0] + shift, f[1] + shift, f[2] + shift);
+    let off = |shifts: &[f64]| {
+        let mut text = format!("OFF\n{} {} 0\n", 6 * shifts.len(), 8 * shifts.len());
+        for &dx in shifts {
+            for [x, y, z] in corners {
+                text += &format!("{} {y} {z}\n", x + dx);
+            }
         }
-    }
-    let path = scratch("two-octahedra.off");
-    std::fs::write(&path, off).unwrap();
-    let out_path = scratch("two-octahedra-mesh.off");
-    let out = loopsurf(&[
-        "mesh",
-        path.to_str().unwrap(),
-        "--size",
-        "0.1",
-        "-o",
-        out_path.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let (stdout, err) = (text(&out.stdout), text(&out.stderr));
+        for n in 0..shifts.len() {
+            for f in faces.map(|f| f.map(|v| v + 6 * n)) {
+                text += &format!("3 {} {} {}\n", f[0], f[1], f[2]);
+            }
+        }
+        text
+    };
+    let mesh = |shifts: &[f64]| {
+        let path = scratch("octahedra.off");
+        std::fs::write(&path, off(shifts)).unwrap();
+        let out_path = scratch("octahedra-mesh.off");
+        let args = [
+            "mesh",
+            path.to_str().unwrap(),
+            "--size",
+            "0.1",
+            "-o",
+            out_path.to_str().unwrap(),
+        ];
+        let out = loopsurf(&args);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        (text(&out.stdout), text(&out.stderr))
+    };
+    let (stdout, err) = mesh(&[0.0, 0.6]);
     let pairs: usize = stdout
         .lines()
         .find_map(|l| l.strip_prefix("crossings: "))
@@ -743,34 +751,9 @@ fn a_mesh_that_crosses_itself_says_so_and_names_a_crossing_net() {
         )) && err.contains("(the control net itself crosses in "),
         "{err}"
     );
-    // One octahedron alone is clean, and says so.
-    let one = format!(
-        "OFF\n6 8 0\n{}{}",
-        octahedron(0.0),
-        faces
-            .map(|f| format!("3 {} {} {}\n", f[0], f[1], f[2]))
-            .concat()
-    );
-    std::fs::write(&path, one).unwrap();
-    let out = loopsurf(&[
-        "mesh",
-        path.to_str().unwrap(),
-        "--size",
-        "0.1",
-        "-o",
-        out_path.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(
-        text(&out.stdout).contains("crossings: none"),
-        "{}",
-        text(&out.stdout)
-    );
-    assert!(
-        !text(&out.stderr).contains("crosses"),
-        "{}",
-        text(&out.stderr)
-    );
+    let (stdout, err) = mesh(&[0.0]);
+    assert!(stdout.contains("crossings: none"), "{stdout}");
+    assert!(!err.contains("crosses"), "{err}");
 }
 
 /// The values of the named array of a .vtu file, as text.
