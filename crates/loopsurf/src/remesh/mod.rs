@@ -50,6 +50,7 @@ mod connectivity;
 mod finish;
 mod flip;
 mod parts;
+pub use parts::{outcomes_from_bytes, outcomes_to_bytes, PartsJob, TaskOutcome};
 mod relax;
 mod remeshing;
 mod renumber;
@@ -194,6 +195,28 @@ impl<'a> Remesher<'a> {
     /// tolerance and the default cap are relative to the whole surface's
     /// diagonal.
     fn sizing_on(&self, surface: &Surface) -> Result<(Sizing, Option<f64>, Budget)> {
+        let (tolerance, budget) = self.settings()?;
+        let diagonal = self.surface.net().bbox_diagonal();
+        let sizing = match (self.size, tolerance) {
+            (Some(h), None) => Sizing::Uniform(h * UNIFORM_AIM),
+            // A size with a tolerance sizes by curvature under the size.
+            // Shrinking a uniform size only where probes missed did not
+            // converge on featured models (fandisk, the Viking): its first
+            // rounds at the full size left edges spanning features, whose
+            // splits the alignment check refused.
+            (size, Some(tol)) => {
+                let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
+                Sizing::curvature(surface, tol, cap, cap * 1e-3, self.gradation)
+            }
+            (None, None) => unreachable!("settings asks for a density"),
+        };
+        Ok((sizing, tolerance, budget))
+    }
+
+    /// The settings checked: the chord tolerance in model units (relative
+    /// to the whole surface's diagonal; none means a uniform size) and the
+    /// budget, a uniform size checked against it.
+    fn settings(&self) -> Result<(Option<f64>, Budget)> {
         let bad = |m: String| Err(Error::InvalidArgument(m));
         let diagonal = self.surface.net().bbox_diagonal();
         if let Some(h) = self.size {
@@ -208,29 +231,16 @@ impl<'a> Remesher<'a> {
             ));
         }
         let tolerance = chord_tolerance(self.tolerance, self.adapt)?.map(|t| t * diagonal);
-        let sizing = match (self.size, self.adapt, tolerance) {
-            (Some(h), false, None) => Sizing::Uniform(h * UNIFORM_AIM),
-            // A size with a tolerance sizes by curvature under the size.
-            // Shrinking a uniform size only where probes missed did not
-            // converge on featured models (fandisk, the Viking): its first
-            // rounds at the full size left edges spanning features, whose
-            // splits the alignment check refused.
-            (size, _, Some(tol)) => {
-                let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
-                Sizing::curvature(surface, tol, cap, cap * 1e-3, self.gradation)
-            }
-            (None, _, None) => {
-                return bad(
-                    "no density given: pass a size, a tolerance or curvature adaptation".into(),
-                )
-            }
-            (Some(_), true, None) => unreachable!("adaptation has a tolerance"),
-        };
-        let budget = Budget::new(self.max_triangles)?;
-        if let Sizing::Uniform(h) = sizing {
-            budget.check_uniform(self.surface.net().area(), h)?;
+        if let (None, None) = (self.size, tolerance) {
+            return bad(
+                "no density given: pass a size, a tolerance or curvature adaptation".into(),
+            );
         }
-        Ok((sizing, tolerance, budget))
+        let budget = Budget::new(self.max_triangles)?;
+        if let (Some(h), None) = (self.size, tolerance) {
+            budget.check_uniform(self.surface.net().area(), h * UNIFORM_AIM)?;
+        }
+        Ok((tolerance, budget))
     }
 
     /// Remeshes the surface: from the chart mesh ([`start`]), rounds of
@@ -253,6 +263,13 @@ impl<'a> Remesher<'a> {
             }
             k => parts::run(self, k),
         }
+    }
+
+    /// Remeshing in [`Remesher::parts`] parts as a job of stages whose
+    /// tasks may run anywhere, for an MPI program to share out among its
+    /// ranks ([`PartsJob`]); [`Remesher::run`] runs them all on threads.
+    pub fn parts_job(&self) -> Result<PartsJob<'a>> {
+        PartsJob::new(self.clone(), self.parts)
     }
 }
 

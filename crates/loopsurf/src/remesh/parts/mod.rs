@@ -36,24 +36,24 @@
 //! a function of the start, the partition and the part alone: the same
 //! bits whichever thread computes it, and whatever runs beside it.
 //!
-//! The files: [`cuts`] (which part a triangle goes to, shared vertices,
-//! rings, fans, blobs), [`work`] (one part's sub-net, piece and remesh, and
-//! the workers) and [`join`] (pieces into one mesh).
+//! The files: [`job`] (the stages and their tasks, for threads and for
+//! MPI ranks alike), [`outcome`] (a task's outcome as bytes), [`cuts`]
+//! (which part a triangle goes to, shared vertices, rings, fans, blobs),
+//! [`work`] (one part's sub-net, piece and remesh, and the workers) and
+//! [`join`] (pieces into one mesh).
 
 mod cuts;
+mod job;
 mod join;
+mod outcome;
 mod work;
 
-use super::start;
 use super::Remesher;
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
-use crate::partition;
-use crate::topology::NONE;
-use cuts::{blobs, control_rings, majority, mesh_rings, shared_vertices};
-use join::{join, kept, Joined};
-use rayon::prelude::*;
-use work::{remesh_pieces, PartWork};
+pub use job::PartsJob;
+pub use outcome::{outcomes_from_bytes, outcomes_to_bytes, TaskOutcome};
+use work::run_tasks;
 
 /// The second pass remeshes the vertices within this many edges of a
 /// first-pass interface.
@@ -73,161 +73,13 @@ const CROSSING_RINGS: usize = 8;
 /// one ring.
 const AVOID_RINGS: usize = 1;
 
-/// [`Remesher::run`] in `k` parts (see the module doc).
+/// [`Remesher::run`] in `k` parts (see the module doc): every task of
+/// every stage on this process's threads.
 pub(super) fn run(remesher: &Remesher, k: usize) -> Result<SurfaceMesh> {
-    let (joined, on_interface) = first_pass(remesher, k)?;
-    second_pass(remesher, k, &joined, &on_interface)
-}
-
-/// The first pass: the chart mesh cut along the control edges between
-/// the parts of a partition, each piece remeshed with its interface
-/// pinned, and joined; with, per vertex of the chart mesh, whether it is
-/// on an interface.
-fn first_pass(remesher: &Remesher, k: usize) -> Result<(Joined, Vec<bool>)> {
-    let surface = remesher.surface;
-    let net = surface.net();
-    let first = partition::partition(net, k)?;
-    let works: Vec<PartWork> = (0..k)
-        .into_par_iter()
-        .map(|p| PartWork::new(remesher, first.triangles(p), first.parts(), p as u32, None))
-        .collect::<Result<_>>()?;
-    let largest = works
-        .iter()
-        .map(|w| w.sizing.largest(|t| w.owned[t]))
-        .fold(0.0, f64::max);
-    let (adapt_to, budget) = (works[0].sizing.adapts_to(), &works[0].budget);
-    let chart = start::chart_mesh(surface, largest, adapt_to, budget)?;
-    let owner: Vec<u32> = chart
-        .charts
-        .iter()
-        .map(|&c| first.parts()[c as usize])
-        .collect();
-    let shared = shared_vertices(&chart.triangles, &owner, chart.points.len());
-    let pins: Vec<u32> = (0..chart.points.len() as u32)
-        .map(|v| if shared[v as usize] { v } else { NONE })
-        .collect();
-    let parts: Vec<u32> = (0..k as u32).collect();
-    let pieces = remesh_pieces(&works, &parts, &chart, &owner, &pins, None)?;
-    drop(works);
-    Ok((join(surface, &pieces)?, shared))
-}
-
-/// The second pass over the first one's mesh `pass`, whose vertices came
-/// from the start's `on_interface` ones where `pass.from` says: the band
-/// around the interfaces, cut along a second partition that keeps away
-/// from them, each piece remeshed with its new interface and its rim
-/// pinned; the rest of the mesh stays as it is. Then the crossings: where
-/// the second cut had to cross a first interface, the band around the
-/// first-interface vertices it pinned again is remeshed once more, each
-/// connected blob of it as one piece, uncut.
-fn second_pass(
-    remesher: &Remesher,
-    k: usize,
-    pass: &Joined,
-    on_interface: &[bool],
-) -> Result<SurfaceMesh> {
-    let net = remesher.surface.net();
-    let mesh = &pass.mesh;
-    let old: Vec<bool> = pass
-        .from
-        .iter()
-        .map(|&g| g != NONE && on_interface[g as usize])
-        .collect();
-    let old_tris = mesh
-        .params
-        .iter()
-        .zip(&old)
-        .filter(|x| *x.1)
-        .map(|x| x.0.tri);
-    let avoid = control_rings(net, old_tris, AVOID_RINGS);
-    let second = partition::partition_avoiding(net, k, &avoid)?;
-    let band = mesh_rings(&mesh.triangles, &old, BAND_RINGS);
-    let owner: Vec<u32> = mesh
-        .triangles
-        .iter()
-        .map(|tri| {
-            if tri.iter().any(|&v| band[v as usize]) {
-                majority(tri.map(|v| second.parts()[mesh.params[v as usize].tri as usize]))
-            } else {
-                NONE
-            }
-        })
-        .collect();
-    let (moved, shared) = remesh_band(remesher, pass, &band, &owner, k, second.parts())?;
-    // The first interface's vertices the second cut pinned again.
-    let again: Vec<bool> = moved
-        .from
-        .iter()
-        .map(|&g| g != NONE && old[g as usize] && shared[g as usize])
-        .collect();
-    if !again.contains(&true) {
-        return Ok(moved.mesh);
+    let mut job = PartsJob::new(remesher.clone(), k)?;
+    while !job.is_done() {
+        let outcomes = run_tasks(&job.weights(), |i| job.run_task(i))?;
+        job.advance(outcomes)?;
     }
-    let mesh = &moved.mesh;
-    let band = mesh_rings(&mesh.triangles, &again, CROSSING_RINGS);
-    let (owner, blobs) = blobs(&mesh.triangles, &band);
-    let nobody = vec![NONE; net.triangles().len()];
-    Ok(
-        remesh_band(remesher, &moved, &band, &owner, blobs, &nobody)?
-            .0
-            .mesh,
-    )
-}
-
-/// The triangles of `pass.mesh` that `owner` gives a part (of `k`; the
-/// others, [`NONE`], stay) remeshed, each part's piece alone on a sub-net
-/// of its own, with every vertex outside `band` and every vertex two
-/// parts share pinned, and joined; with, per vertex of `pass.mesh`,
-/// whether it was so shared. Part p's sub-net owns (for its shrink
-/// factors) the control triangles t with `control_owner[t] == p`.
-fn remesh_band(
-    remesher: &Remesher,
-    pass: &Joined,
-    band: &[bool],
-    owner: &[u32],
-    k: usize,
-    control_owner: &[u32],
-) -> Result<(Joined, Vec<bool>)> {
-    let mesh = &pass.mesh;
-    let shared = shared_vertices(&mesh.triangles, owner, mesh.points.len());
-    let pins: Vec<u32> = (0..mesh.points.len() as u32)
-        .map(|v| {
-            if shared[v as usize] || !band[v as usize] {
-                v
-            } else {
-                NONE
-            }
-        })
-        .collect();
-    let mut cover: Vec<Vec<u32>> = vec![Vec::new(); k];
-    for (tri, &p) in mesh.triangles.iter().zip(owner) {
-        if p != NONE {
-            cover[p as usize].extend(tri.map(|v| mesh.params[v as usize].tri));
-        }
-    }
-    let parts: Vec<u32> = (0..k as u32)
-        .filter(|&p| !cover[p as usize].is_empty())
-        .collect();
-    let works: Vec<PartWork> = parts
-        .par_iter()
-        .map(|&p| {
-            PartWork::new(
-                remesher,
-                &cover[p as usize],
-                control_owner,
-                p,
-                Some(&pass.shrunk),
-            )
-        })
-        .collect::<Result<_>>()?;
-    let mut pieces = vec![kept(pass, owner)];
-    pieces.extend(remesh_pieces(
-        &works,
-        &parts,
-        mesh,
-        owner,
-        &pins,
-        Some(&pass.sizes),
-    )?);
-    Ok((join(remesher.surface, &pieces)?, shared))
+    job.into_mesh()
 }

@@ -13,7 +13,6 @@ use crate::mesh::SurfaceMesh;
 use crate::parameters::SurfacePoint;
 use crate::partition::Part;
 use crate::surface::Surface;
-use crate::topology::NONE;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -105,7 +104,7 @@ impl PartWork {
     /// `owner[t]` owns), vertex v pinned where `pins[v]` is not [`NONE`].
     /// Vertices land only in the triangles that evaluate as in the whole
     /// (the part's [`Part`] owns them).
-    fn remesh(
+    pub(super) fn remesh(
         &self,
         start: &SurfaceMesh,
         owner: &[u32],
@@ -210,36 +209,26 @@ impl PartWork {
     }
 }
 
-/// The pieces of `start` (triangle t in part `owner[t]`), each remeshed
-/// on its part (`works[i]` on part `parts[i]`), vertex v pinned where
-/// `pins[v]` is not [`NONE`], its size before grading at most `bounds[v]`
-/// if given.
+/// Every task of a stage (`weights.len()` of them, task i about
+/// `weights[i]` of work), run by `task`, the outcomes in task order.
 ///
-/// The pieces are the unit of parallel work: as many workers as the
-/// current rayon pool has threads each take the next piece, largest
-/// first, and remesh it on a pool of their own (one thread each when
-/// there are at least as many pieces as threads). Run as nested rayon
-/// jobs instead, the pieces' serial passes held up each other's joins:
+/// The tasks are the unit of parallel work: as many workers as the
+/// current rayon pool has threads each take the next task, the heaviest
+/// first, and run it on a pool of their own (one thread each when there
+/// are at least as many tasks as threads). Run as nested rayon jobs
+/// instead, the pieces' serial passes held up each other's joins:
 /// bunny00 in 8 parts ran 1.6 times faster on two threads than on one.
-pub(super) fn remesh_pieces(
-    works: &[PartWork],
-    parts: &[u32],
-    start: &SurfaceMesh,
-    owner: &[u32],
-    pins: &[u32],
-    bounds: Option<&[f64]>,
-) -> Result<Vec<Piece>> {
+pub(super) fn run_tasks<T: Send>(
+    weights: &[usize],
+    task: impl Fn(usize) -> Result<T> + Sync,
+) -> Result<Vec<T>> {
     let threads = rayon::current_num_threads();
-    let workers = threads.min(works.len()).max(1);
+    let workers = threads.min(weights.len()).max(1);
     let inner = (threads / workers).max(1);
-    let mut order: Vec<usize> = (0..works.len()).collect();
-    let mut sizes = vec![0usize; parts.iter().map(|&p| p as usize + 1).max().unwrap_or(0)];
-    for &p in owner.iter().filter(|&&p| p != NONE) {
-        sizes[p as usize] += 1;
-    }
-    order.sort_by_key(|&i| std::cmp::Reverse(sizes[parts[i] as usize]));
+    let mut order: Vec<usize> = (0..weights.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(weights[i]));
     let next = AtomicUsize::new(0);
-    let done: Vec<Mutex<Option<Result<Piece>>>> = works.iter().map(|_| Mutex::new(None)).collect();
+    let done: Vec<Mutex<Option<Result<T>>>> = weights.iter().map(|_| Mutex::new(None)).collect();
     std::thread::scope(|scope| {
         for _ in 0..workers {
             scope.spawn(|| {
@@ -248,13 +237,11 @@ pub(super) fn remesh_pieces(
                     let Some(&i) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
                         break;
                     };
-                    let piece = match &pool {
-                        Ok(pool) => {
-                            pool.install(|| works[i].remesh(start, owner, pins, bounds, parts[i]))
-                        }
+                    let outcome = match &pool {
+                        Ok(pool) => pool.install(|| task(i)),
                         Err(e) => Err(Error::InvalidArgument(format!("no thread pool: {e}"))),
                     };
-                    *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(piece);
+                    *done[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(outcome);
                 }
             });
         }
@@ -263,7 +250,7 @@ pub(super) fn remesh_pieces(
         .map(|m| {
             m.into_inner()
                 .unwrap_or_else(|e| e.into_inner())
-                .unwrap_or_else(|| Err(Error::InvalidArgument("a piece was not remeshed".into())))
+                .unwrap_or_else(|| Err(Error::InvalidArgument("a task was not run".into())))
         })
         .collect()
 }

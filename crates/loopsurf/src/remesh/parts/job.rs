@@ -1,0 +1,486 @@
+//! Remeshing by parts as a job of stages, so that the same work runs on
+//! threads or on the ranks of an MPI job.
+//!
+//! Each stage is a list of tasks that depend only on what every process
+//! already holds: one part's sizes, one part's piece of the first pass, of
+//! the band, or of a crossing blob. The tasks of a stage run anywhere, in
+//! any order; their outcomes, all of them, then advance the job to its
+//! next stage the same way on every process (a join, a partition, the
+//! next stage's cuts). [`super::run`] runs every task on this process's
+//! threads. An MPI program runs on each rank the tasks
+//! [`PartsJob::assigned`] gives it, sends their outcomes as bytes
+//! ([`super::outcome`]) to every rank, and advances with all of them: the
+//! mesh is the threaded one, bit for bit, on any number of ranks.
+
+use super::cuts::{blobs, control_rings, majority, mesh_rings, shared_vertices};
+use super::join::{join, kept, Joined};
+use super::outcome::{Outcome, TaskOutcome};
+use super::work::PartWork;
+use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS};
+use crate::error::{Error, Result};
+use crate::mesh::SurfaceMesh;
+use crate::partition;
+use crate::remesh::{start, Remesher};
+use crate::topology::NONE;
+
+/// Remeshing in parts, stage by stage (see the module doc): make one with
+/// [`Remesher::parts_job`], then until [`PartsJob::is_done`], run the
+/// current stage's tasks ([`PartsJob::run_task`]) and hand every outcome,
+/// in task order, to [`PartsJob::advance`].
+pub struct PartsJob<'a> {
+    remesher: Remesher<'a>,
+    k: usize,
+    /// Per control triangle: its part in the first partition, which also
+    /// says which rank holds which triangle of the final mesh.
+    first_parts: Vec<u32>,
+    stage: Stage,
+    /// The parts' works this process built in the sizes stage, kept for
+    /// its first pass.
+    works: Vec<Option<PartWork>>,
+}
+
+enum Stage {
+    /// Each part's sub-net, surface and sizes; the outcome is the largest
+    /// size the part asks for.
+    Sizes,
+    /// The chart mesh at that largest size, cut along the control edges
+    /// between the parts, each piece remeshed with the cut pinned.
+    First(Box<FirstPass>),
+    /// The band around the first interfaces, cut by a second partition.
+    Band(Box<BandPass>),
+    /// The band around the places where the second cut crossed a first
+    /// interface, each connected blob uncut.
+    Crossings(Box<BandPass>),
+    Done(SurfaceMesh),
+}
+
+struct FirstPass {
+    chart: SurfaceMesh,
+    /// Per chart triangle: its part.
+    owner: Vec<u32>,
+    /// Per chart vertex: itself where two parts share it, else [`NONE`].
+    pins: Vec<u32>,
+    shared: Vec<bool>,
+}
+
+/// A pass over some triangles of a mesh: those `owner` gives a part are
+/// remeshed, one task per part, the rest stays.
+struct BandPass {
+    pass: Joined,
+    owner: Vec<u32>,
+    /// The parts with triangles to remesh, in order: task i is part
+    /// `parts[i]`.
+    parts: Vec<u32>,
+    /// Per part: the control triangles under its triangles.
+    cover: Vec<Vec<u32>>,
+    /// Per control triangle: the part whose sub-net owns it (for its
+    /// shrink factors), or [`NONE`].
+    control_owner: Vec<u32>,
+    pins: Vec<u32>,
+    shared: Vec<bool>,
+    /// Per vertex of the mesh: whether it is a first-interface vertex
+    /// (the band pass only, to find where the second cut crossed them).
+    old: Vec<bool>,
+}
+
+impl<'a> PartsJob<'a> {
+    /// The job of remeshing with `remesher` in `k` parts, at its first
+    /// stage: the control net's first partition.
+    pub(in crate::remesh) fn new(remesher: Remesher<'a>, k: usize) -> Result<PartsJob<'a>> {
+        if k == 0 {
+            return Err(Error::InvalidArgument(
+                "0 parts: remesh in at least 1".into(),
+            ));
+        }
+        remesher.settings()?;
+        let first = partition::partition(remesher.surface.net(), k)?;
+        Ok(PartsJob {
+            remesher,
+            k,
+            first_parts: first.parts().to_vec(),
+            stage: Stage::Sizes,
+            works: (0..k).map(|_| None).collect(),
+        })
+    }
+
+    /// The number of parts.
+    pub fn num_parts(&self) -> usize {
+        self.k
+    }
+
+    /// Whether the mesh is made ([`PartsJob::mesh`]).
+    pub fn is_done(&self) -> bool {
+        matches!(self.stage, Stage::Done(_))
+    }
+
+    /// The number of tasks of the current stage (0 when done).
+    pub fn tasks(&self) -> usize {
+        self.weights().len()
+    }
+
+    /// The name of the current stage, for progress messages.
+    pub fn stage_name(&self) -> &'static str {
+        match self.stage {
+            Stage::Sizes => "sizes",
+            Stage::First(_) => "first pass",
+            Stage::Band(_) => "interface band",
+            Stage::Crossings(_) => "interface crossings",
+            Stage::Done(_) => "done",
+        }
+    }
+
+    /// Per task of the current stage: about how much work it is (control
+    /// triangles of its part for the sizes and the first pass, which the
+    /// two stages share so that a rank meshes the parts it sized; mesh
+    /// triangles to remesh after).
+    pub fn weights(&self) -> Vec<usize> {
+        let per_part = |owner: &[u32], n: usize| {
+            let mut count = vec![0usize; n];
+            for &p in owner.iter().filter(|&&p| p != NONE) {
+                count[p as usize] += 1;
+            }
+            count
+        };
+        match &self.stage {
+            Stage::Sizes | Stage::First(_) => per_part(&self.first_parts, self.k),
+            Stage::Band(b) | Stage::Crossings(b) => {
+                let count = per_part(&b.owner, b.cover.len());
+                b.parts.iter().map(|&p| count[p as usize]).collect()
+            }
+            Stage::Done(_) => Vec::new(),
+        }
+    }
+
+    /// The tasks of the current stage that rank `rank` of `ranks` runs,
+    /// in order: the heaviest task first to the least loaded rank (the
+    /// lowest on a tie), which every rank computes alike.
+    pub fn assigned(&self, rank: usize, ranks: usize) -> Vec<usize> {
+        let owners = deal(&self.weights(), ranks);
+        (0..owners.len()).filter(|&i| owners[i] == rank).collect()
+    }
+
+    /// Runs task `i` of the current stage. It depends only on what every
+    /// process holds, so any process may run it, with the same outcome.
+    pub fn run_task(&self, i: usize) -> Result<TaskOutcome> {
+        let tasks = self.tasks();
+        if i >= tasks {
+            return Err(Error::InvalidArgument(format!(
+                "task {i} of the {} stage, which has {tasks}",
+                self.stage_name()
+            )));
+        }
+        let remesher = &self.remesher;
+        Ok(TaskOutcome(match &self.stage {
+            Stage::Sizes => {
+                let work = self.first_work(i)?;
+                let largest = work.sizing.largest(|t| work.owned[t]);
+                Outcome::Largest(largest, Some(Box::new(work)))
+            }
+            Stage::First(f) => {
+                let built;
+                let work = match &self.works[i] {
+                    Some(work) => work,
+                    None => {
+                        built = self.first_work(i)?;
+                        &built
+                    }
+                };
+                Outcome::Piece(work.remesh(&f.chart, &f.owner, &f.pins, None, i as u32)?)
+            }
+            Stage::Band(b) | Stage::Crossings(b) => {
+                let p = b.parts[i];
+                let work = PartWork::new(
+                    remesher,
+                    &b.cover[p as usize],
+                    &b.control_owner,
+                    p,
+                    Some(&b.pass.shrunk),
+                )?;
+                let piece = work.remesh(&b.pass.mesh, &b.owner, &b.pins, Some(&b.pass.sizes), p)?;
+                Outcome::Piece(piece)
+            }
+            Stage::Done(_) => unreachable!("a done job has no task"),
+        }))
+    }
+
+    /// Part p's work in the first partition.
+    fn first_work(&self, p: usize) -> Result<PartWork> {
+        let cover: Vec<u32> = (0..self.first_parts.len() as u32)
+            .filter(|&t| self.first_parts[t as usize] == p as u32)
+            .collect();
+        PartWork::new(&self.remesher, &cover, &self.first_parts, p as u32, None)
+    }
+
+    /// Advances to the next stage with the current stage's outcomes, one
+    /// per task, in task order.
+    pub fn advance(&mut self, outcomes: Vec<TaskOutcome>) -> Result<()> {
+        if outcomes.len() != self.tasks() {
+            return Err(Error::InvalidArgument(format!(
+                "{} outcomes for the {} stage's {} tasks",
+                outcomes.len(),
+                self.stage_name(),
+                self.tasks()
+            )));
+        }
+        let stage = std::mem::replace(&mut self.stage, Stage::Sizes);
+        self.stage = match stage {
+            Stage::Sizes => Stage::First(Box::new(self.first_pass(outcomes)?)),
+            Stage::First(f) => {
+                self.works.iter_mut().for_each(|w| *w = None);
+                let (joined, on_interface) =
+                    (join_pieces(&self.remesher, Vec::new(), outcomes)?, f.shared);
+                Stage::Band(Box::new(self.band_pass(joined, &on_interface)?))
+            }
+            Stage::Band(b) => {
+                let keep = kept(&b.pass, &b.owner);
+                let moved = join_pieces(&self.remesher, vec![keep], outcomes)?;
+                // The first interface's vertices the second cut pinned again.
+                let again: Vec<bool> = moved
+                    .from
+                    .iter()
+                    .map(|&g| g != NONE && b.old[g as usize] && b.shared[g as usize])
+                    .collect();
+                if again.contains(&true) {
+                    Stage::Crossings(Box::new(self.crossings_pass(moved, &again)))
+                } else {
+                    Stage::Done(moved.mesh)
+                }
+            }
+            Stage::Crossings(b) => {
+                let keep = kept(&b.pass, &b.owner);
+                Stage::Done(join_pieces(&self.remesher, vec![keep], outcomes)?.mesh)
+            }
+            Stage::Done(mesh) => Stage::Done(mesh),
+        };
+        Ok(())
+    }
+
+    /// The first pass from the sizes: the chart mesh at the largest size
+    /// any part asks for, cut between the parts, the cut pinned.
+    fn first_pass(&mut self, outcomes: Vec<TaskOutcome>) -> Result<FirstPass> {
+        let mut largest: f64 = 0.0;
+        for (p, outcome) in outcomes.into_iter().enumerate() {
+            match outcome.0 {
+                Outcome::Largest(h, work) => {
+                    largest = largest.max(h);
+                    self.works[p] = work.map(|w| *w);
+                }
+                Outcome::Piece(_) => return Err(wrong_outcome("sizes")),
+            }
+        }
+        let surface = self.remesher.surface;
+        let (adapt_to, budget) = self.remesher.settings()?;
+        let chart = start::chart_mesh(surface, largest, adapt_to, &budget)?;
+        let owner: Vec<u32> = chart
+            .charts
+            .iter()
+            .map(|&c| self.first_parts[c as usize])
+            .collect();
+        let shared = shared_vertices(&chart.triangles, &owner, chart.points.len());
+        let pins = (0..chart.points.len() as u32)
+            .map(|v| if shared[v as usize] { v } else { NONE })
+            .collect();
+        Ok(FirstPass {
+            chart,
+            owner,
+            pins,
+            shared,
+        })
+    }
+
+    /// The band pass over the first pass's mesh `pass`, whose vertices
+    /// came from the start's `on_interface` ones where `pass.from` says:
+    /// the band around the interfaces, cut along a second partition that
+    /// keeps away from them.
+    fn band_pass(&self, pass: Joined, on_interface: &[bool]) -> Result<BandPass> {
+        let net = self.remesher.surface.net();
+        let mesh = &pass.mesh;
+        let old: Vec<bool> = pass
+            .from
+            .iter()
+            .map(|&g| g != NONE && on_interface[g as usize])
+            .collect();
+        let old_tris = mesh
+            .params
+            .iter()
+            .zip(&old)
+            .filter(|x| *x.1)
+            .map(|x| x.0.tri);
+        let avoid = control_rings(net, old_tris, AVOID_RINGS);
+        let second = partition::partition_avoiding(net, self.k, &avoid)?;
+        let band = mesh_rings(&mesh.triangles, &old, BAND_RINGS);
+        let owner: Vec<u32> = mesh
+            .triangles
+            .iter()
+            .map(|tri| {
+                if tri.iter().any(|&v| band[v as usize]) {
+                    majority(tri.map(|v| second.parts()[mesh.params[v as usize].tri as usize]))
+                } else {
+                    NONE
+                }
+            })
+            .collect();
+        Ok(BandPass::new(
+            pass,
+            &band,
+            owner,
+            self.k,
+            second.parts().to_vec(),
+            old,
+        ))
+    }
+
+    /// The last pass over `moved`: the band around the first-interface
+    /// vertices `again` that the second cut pinned again, each connected
+    /// blob of it one piece, uncut.
+    fn crossings_pass(&self, moved: Joined, again: &[bool]) -> BandPass {
+        let mesh = &moved.mesh;
+        let band = mesh_rings(&mesh.triangles, again, CROSSING_RINGS);
+        let (owner, count) = blobs(&mesh.triangles, &band);
+        let nobody = vec![NONE; self.first_parts.len()];
+        BandPass::new(moved, &band, owner, count, nobody, Vec::new())
+    }
+
+    /// The mesh, once the job is done.
+    pub fn mesh(&self) -> Option<&SurfaceMesh> {
+        match &self.stage {
+            Stage::Done(mesh) => Some(mesh),
+            _ => None,
+        }
+    }
+
+    /// The mesh, once the job is done; an error before.
+    pub fn into_mesh(self) -> Result<SurfaceMesh> {
+        match self.stage {
+            Stage::Done(mesh) => Ok(mesh),
+            _ => Err(Error::InvalidArgument(format!(
+                "the mesh is not made yet: the job is at its {} stage",
+                self.stage_name()
+            ))),
+        }
+    }
+
+    /// The triangles of the finished mesh that rank `rank` of `ranks`
+    /// holds: those in the parts it meshed in the first pass (a triangle's
+    /// part is the one most of its vertices' control triangles are in).
+    pub fn rank_triangles(&self, rank: usize, ranks: usize) -> Result<Vec<u32>> {
+        let Stage::Done(mesh) = &self.stage else {
+            return Err(Error::InvalidArgument(format!(
+                "no triangles to hand out yet: the job is at its {} stage",
+                self.stage_name()
+            )));
+        };
+        let per_part = {
+            let mut count = vec![0usize; self.k];
+            for &p in &self.first_parts {
+                count[p as usize] += 1;
+            }
+            count
+        };
+        let rank_of = deal(&per_part, ranks);
+        Ok((0..mesh.triangles.len() as u32)
+            .filter(|&t| {
+                let tri = mesh.triangles[t as usize];
+                let part =
+                    majority(tri.map(|v| self.first_parts[mesh.params[v as usize].tri as usize]));
+                rank_of[part as usize] == rank
+            })
+            .collect())
+    }
+}
+
+impl BandPass {
+    /// The pass over `pass.mesh`'s triangles that `owner` gives one of
+    /// `k` parts, every vertex outside `band` and every vertex two parts
+    /// share pinned; part p's sub-net owns the control triangles t with
+    /// `control_owner[t] == p`.
+    fn new(
+        pass: Joined,
+        band: &[bool],
+        owner: Vec<u32>,
+        k: usize,
+        control_owner: Vec<u32>,
+        old: Vec<bool>,
+    ) -> BandPass {
+        let mesh = &pass.mesh;
+        let shared = shared_vertices(&mesh.triangles, &owner, mesh.points.len());
+        let pins = (0..mesh.points.len() as u32)
+            .map(|v| {
+                if shared[v as usize] || !band[v as usize] {
+                    v
+                } else {
+                    NONE
+                }
+            })
+            .collect();
+        let mut cover: Vec<Vec<u32>> = vec![Vec::new(); k];
+        for (tri, &p) in mesh.triangles.iter().zip(&owner) {
+            if p != NONE {
+                cover[p as usize].extend(tri.map(|v| mesh.params[v as usize].tri));
+            }
+        }
+        let parts = (0..k as u32)
+            .filter(|&p| !cover[p as usize].is_empty())
+            .collect();
+        BandPass {
+            pass,
+            owner,
+            parts,
+            cover,
+            control_owner,
+            pins,
+            shared,
+            old,
+        }
+    }
+}
+
+/// `first` and the pieces of `outcomes`, joined on their pinned vertices.
+fn join_pieces(
+    remesher: &Remesher,
+    mut pieces: Vec<super::work::Piece>,
+    outcomes: Vec<TaskOutcome>,
+) -> Result<Joined> {
+    for outcome in outcomes {
+        match outcome.0 {
+            Outcome::Piece(piece) => pieces.push(piece),
+            Outcome::Largest(..) => return Err(wrong_outcome("a remeshing")),
+        }
+    }
+    join(remesher.surface, &pieces)
+}
+
+fn wrong_outcome(stage: &str) -> Error {
+    Error::InvalidArgument(format!(
+        "an outcome of another stage handed to {stage} stage"
+    ))
+}
+
+/// Per task: the rank of `ranks` that runs it, the heaviest first to the
+/// least loaded (the lowest rank on a tie, the lower task on equal
+/// weights).
+fn deal(weights: &[usize], ranks: usize) -> Vec<usize> {
+    let ranks = ranks.max(1);
+    let mut order: Vec<usize> = (0..weights.len()).collect();
+    order.sort_by_key(|&i| (std::cmp::Reverse(weights[i]), i));
+    let mut load = vec![0usize; ranks];
+    let mut owner = vec![0; weights.len()];
+    for i in order {
+        let r = (0..ranks).min_by_key(|&r| (load[r], r)).expect("a rank");
+        owner[i] = r;
+        load[r] += weights[i].max(1);
+    }
+    owner
+}
+
+#[cfg(test)]
+mod tests {
+    use super::deal;
+
+    #[test]
+    fn the_heaviest_task_goes_to_the_least_loaded_rank() {
+        assert_eq!(deal(&[5, 9, 1, 4], 2), vec![1, 0, 0, 1]);
+        assert_eq!(deal(&[3, 3, 3], 1), vec![0, 0, 0]);
+        assert_eq!(deal(&[0, 0], 4), vec![0, 1]);
+    }
+}

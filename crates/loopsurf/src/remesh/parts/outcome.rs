@@ -1,0 +1,215 @@
+//! A task's outcome, and a rank's outcomes as bytes, so that an MPI job
+//! can send them to every rank (`MPI_Allgatherv`): the frame of a surface
+//! stream (magic, version, 64-bit counts, CRC-32) with its own magic.
+//!
+//! Layout of one outcome after the frame's header, little-endian; the tag
+//! is 0 for a part's largest size, 1 for a remeshed piece:
+//!
+//! | bytes | content |
+//! |---|---|
+//! | 56 per vertex | x y z (f64), control triangle (u32), v w (f64), pinned start vertex or 0xffffffff (u32), target size (f64) |
+//! | 16 per triangle | a b c (u32), model face (u32) |
+//! | 12 per shrink factor | control triangle (u32), factor (f64) |
+//! | 8 per number | the largest size; or the diagonal, then the chord error measured if any |
+//!
+//! A rank's outcomes are a u64 count, then per outcome its task (u64),
+//! its length in bytes (u64) and the outcome. Every f64 travels as its
+//! bits, so the receiver joins exactly what the sender computed.
+
+use super::super::finish::without_curves;
+use super::work::{PartWork, Piece};
+use crate::error::{Error, Result};
+use crate::parameters::SurfacePoint;
+use crate::stream::{seal, start, Frame};
+use glam::DVec3;
+
+const MAGIC: &[u8; 8] = b"LOOPTASK";
+const SIZES: [u64; 4] = [56, 16, 12, 8];
+const NAMES: [&str; 4] = ["vertices", "triangles", "shrink factors", "numbers"];
+const LARGEST: u32 = 0;
+const PIECE: u32 = 1;
+
+/// What one task of a [`super::PartsJob`] stage computed.
+pub struct TaskOutcome(pub(super) Outcome);
+
+pub(super) enum Outcome {
+    /// A part's largest size, and its work where it was built here (not
+    /// sent: the rank that built it keeps it for its first pass).
+    Largest(f64, Option<Box<PartWork>>),
+    Piece(Piece),
+}
+
+impl TaskOutcome {
+    /// The outcome as a checksummed byte stream.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        match &self.0 {
+            Outcome::Largest(h, _) => {
+                start(&mut out, MAGIC, LARGEST, &[0, 0, 0, 1]);
+                out.extend_from_slice(&h.to_le_bytes());
+            }
+            Outcome::Piece(piece) => {
+                let mesh = &piece.mesh;
+                let numbers = 1 + mesh.deviation.is_some() as u64;
+                let counts = [
+                    mesh.points.len() as u64,
+                    mesh.triangles.len() as u64,
+                    piece.shrunk.len() as u64,
+                    numbers,
+                ];
+                start(&mut out, MAGIC, PIECE, &counts);
+                for (i, x) in mesh.points.iter().enumerate() {
+                    let at = mesh.params[i];
+                    f64s(&mut out, &x.to_array());
+                    out.extend_from_slice(&at.tri.to_le_bytes());
+                    f64s(&mut out, &[at.v, at.w]);
+                    out.extend_from_slice(&piece.pinned[i].to_le_bytes());
+                    f64s(&mut out, &[piece.sizes[i]]);
+                }
+                for (tri, face) in mesh.triangles.iter().zip(&mesh.faces) {
+                    for i in tri.iter().chain([face]) {
+                        out.extend_from_slice(&i.to_le_bytes());
+                    }
+                }
+                for &(t, f) in &piece.shrunk {
+                    out.extend_from_slice(&t.to_le_bytes());
+                    f64s(&mut out, &[f]);
+                }
+                f64s(&mut out, &[mesh.diagonal]);
+                if let Some(d) = mesh.deviation {
+                    f64s(&mut out, &[d]);
+                }
+            }
+        }
+        seal(out)
+    }
+
+    /// Rebuilds an outcome from [`TaskOutcome::to_bytes`] output; a
+    /// truncated, damaged or foreign stream is an [`Error::Stream`].
+    pub fn from_bytes(bytes: &[u8]) -> Result<TaskOutcome> {
+        let frame = Frame {
+            magic: MAGIC,
+            what: "task outcome",
+            sizes: &SIZES,
+            names: &NAMES,
+        };
+        let (mut r, tag, counts) = frame.open(bytes)?;
+        let [nv, nt, ns, nn] = [0, 1, 2, 3].map(|i| counts[i] as usize);
+        match (tag, nn) {
+            (LARGEST, 1) if nv + nt + ns == 0 => Ok(TaskOutcome(Outcome::Largest(r.f64(), None))),
+            (PIECE, 1 | 2) => {
+                let mut points = Vec::with_capacity(nv);
+                let mut params = Vec::with_capacity(nv);
+                let mut pinned = Vec::with_capacity(nv);
+                let mut sizes = Vec::with_capacity(nv);
+                for _ in 0..nv {
+                    points.push(DVec3::new(r.f64(), r.f64(), r.f64()));
+                    let tri = r.u32();
+                    params.push(SurfacePoint {
+                        tri,
+                        v: r.f64(),
+                        w: r.f64(),
+                    });
+                    pinned.push(r.u32());
+                    sizes.push(r.f64());
+                }
+                let mut triangles = Vec::with_capacity(nt);
+                let mut faces = Vec::with_capacity(nt);
+                for t in 0..nt {
+                    let tri = [r.u32(), r.u32(), r.u32()];
+                    if let Some(&v) = tri.iter().find(|&&v| v as usize >= nv) {
+                        return Err(bad(format!(
+                            "triangle {t} names vertex {v} of a piece of {nv}"
+                        )));
+                    }
+                    triangles.push(tri);
+                    faces.push(r.u32());
+                }
+                let shrunk = (0..ns).map(|_| (r.u32(), r.f64())).collect();
+                let diagonal = r.f64();
+                let deviation = (nn == 2).then(|| r.f64());
+                let mesh = without_curves(points, triangles, params, faces, deviation, diagonal);
+                Ok(TaskOutcome(Outcome::Piece(Piece {
+                    mesh,
+                    pinned,
+                    sizes,
+                    shrunk,
+                })))
+            }
+            _ => Err(bad(format!(
+                "tag {tag} with {nn} numbers: neither a largest size nor a piece"
+            ))),
+        }
+    }
+}
+
+/// A rank's outcomes, each with its task, as one buffer (see the module
+/// doc).
+pub fn outcomes_to_bytes(outcomes: &[(usize, &TaskOutcome)]) -> Vec<u8> {
+    let mut out = (outcomes.len() as u64).to_le_bytes().to_vec();
+    for (task, outcome) in outcomes {
+        let bytes = outcome.to_bytes();
+        out.extend_from_slice(&(*task as u64).to_le_bytes());
+        out.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+        out.extend_from_slice(&bytes);
+    }
+    out
+}
+
+/// The outcomes of [`outcomes_to_bytes`], each with its task.
+pub fn outcomes_from_bytes(bytes: &[u8]) -> Result<Vec<(usize, TaskOutcome)>> {
+    let mut at = 0usize;
+    let n = word(bytes, &mut at, "the count")?;
+    let mut outcomes = Vec::new();
+    for _ in 0..n {
+        let task = word(bytes, &mut at, "a task")? as usize;
+        let len = word(bytes, &mut at, "a length")?;
+        let start = at;
+        let end = usize::try_from(len)
+            .ok()
+            .and_then(|l| start.checked_add(l))
+            .filter(|&e| e <= bytes.len())
+            .ok_or_else(|| {
+                bad(format!(
+                    "an outcome of {len} bytes at byte {start} runs past the end"
+                ))
+            })?;
+        outcomes.push((task, TaskOutcome::from_bytes(&bytes[start..end])?));
+        at = end;
+    }
+    if at != bytes.len() {
+        return Err(bad(format!(
+            "{} bytes after the last of {n} outcomes",
+            bytes.len() - at
+        )));
+    }
+    Ok(outcomes)
+}
+
+/// The u64 at byte `at`, which moves past it; `what` names it for the
+/// error when the bytes end first.
+fn word(bytes: &[u8], at: &mut usize, what: &str) -> Result<u64> {
+    let end = at.checked_add(8).filter(|&e| e <= bytes.len());
+    let end = end.ok_or_else(|| {
+        bad(format!(
+            "{} bytes of outcomes end where {what} should be, at byte {at}",
+            bytes.len()
+        ))
+    })?;
+    let x = u64::from_le_bytes(bytes[*at..end].try_into().expect("8 bytes"));
+    *at = end;
+    Ok(x)
+}
+
+fn f64s(out: &mut Vec<u8>, xs: &[f64]) {
+    for x in xs {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+}
+
+fn bad(message: String) -> Error {
+    Error::Stream {
+        what: "task outcome",
+        message,
+    }
+}
