@@ -441,6 +441,54 @@ module loopsurf
             type(ls_remesh_options), intent(in) :: options
             type(c_ptr), intent(out) :: mesh
         end function
+        ! Remeshing in parts among ranks (ls_remesh_job, see the C header):
+        ! every rank makes a job, then until done runs its tasks of the
+        ! stage, sends their bytes to every rank (MPI_Allgatherv) and
+        ! advances with everybody's bytes, counts(q) from rank q (0-based
+        ! ranks). The job borrows the surface. stage points at a static
+        ! C string.
+        integer(c_int) function ls_remesh_job_new(surface, options, rank, ranks, job) &
+                bind(C, name="ls_remesh_job_new")
+            import :: c_int, c_ptr, ls_remesh_options
+            type(c_ptr), value :: surface
+            type(ls_remesh_options), intent(in) :: options
+            integer(c_int), value :: rank, ranks
+            type(c_ptr), intent(out) :: job
+        end function
+        integer(c_int) function ls_remesh_job_done(job, done, stage) bind(C, name="ls_remesh_job_done")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: job
+            integer(c_int), intent(out) :: done
+            type(c_ptr), intent(out) :: stage
+        end function
+        integer(c_int) function ls_remesh_job_run(job, bytes, n) bind(C, name="ls_remesh_job_run")
+            import :: c_int, c_ptr, c_size_t
+            type(c_ptr), value :: job
+            type(c_ptr), intent(out) :: bytes
+            integer(c_size_t), intent(out) :: n
+        end function
+        integer(c_int) function ls_remesh_job_advance(job, all, counts) bind(C, name="ls_remesh_job_advance")
+            import :: c_int, c_ptr, c_size_t, c_int8_t
+            type(c_ptr), value :: job
+            integer(c_int8_t), intent(in) :: all(*)
+            integer(c_size_t), intent(in) :: counts(*)
+        end function
+        ! The whole mesh, or this rank's piece with its nodes' 0-based ids in
+        ! the whole (int64, freed with ls_free_array).
+        integer(c_int) function ls_remesh_job_mesh(job, mesh) bind(C, name="ls_remesh_job_mesh")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: job
+            type(c_ptr), intent(out) :: mesh
+        end function
+        integer(c_int) function ls_remesh_job_piece(job, piece, global_ids) bind(C, name="ls_remesh_job_piece")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: job
+            type(c_ptr), intent(out) :: piece, global_ids
+        end function
+        subroutine ls_remesh_job_free(job) bind(C, name="ls_remesh_job_free")
+            import :: c_ptr
+            type(c_ptr), value :: job
+        end subroutine
         integer(c_int) function ls_adapt_options_default(options) bind(C, name="ls_adapt_options_default")
             import :: c_int, ls_adapt_options
             type(ls_adapt_options), intent(out) :: options

@@ -225,6 +225,55 @@ program test_loopsurf
         call check(ls_mesh(surf, mo, mesh) == LS_ERR_OVER_BUDGET, "mesh: over the budget")
         call check(index(loopsurf_last_error(), "over the limit of 100") > 0, "mesh: names the budget")
     end block
+    ! Remeshing in parts as a job of one rank, its bytes handed back to it
+    ! as a transport would: the mesh of loopsurf_remesh in as many parts.
+    block
+        type(ls_remesh_options) :: jo
+        type(c_ptr) :: job, sent, stage, jmesh, piece, gids
+        integer(c_int) :: done
+        integer(c_size_t) :: nb, counts(1)
+        integer(c_int8_t), pointer :: b(:)
+        integer(c_int8_t), allocatable :: gathered(:)
+        integer(c_int64_t), pointer :: ids(:)
+        real(c_double), allocatable :: jx(:, :), jvw(:, :), rx(:, :), rvw(:, :)
+        integer, allocatable :: jt(:, :), jtri(:), rt(:, :), rtri(:), rface(:)
+        real(c_double) :: dev
+        integer :: stages
+        call check(ls_remesh_options_default(jo) == LS_OK, "job options")
+        jo%size = 0.3d0
+        jo%tolerance = 0d0
+        jo%adapt_curvature = 0
+        jo%parts = 2
+        call check(ls_remesh_job_new(surf, jo, 0_c_int, 1_c_int, job) == LS_OK, "job")
+        stages = 0
+        do
+            call check(ls_remesh_job_done(job, done, stage) == LS_OK, "job done")
+            if (done /= 0 .or. stages > 10) exit
+            call check(ls_remesh_job_run(job, sent, nb) == LS_OK, "job run")
+            call c_f_pointer(sent, b, [nb])
+            gathered = b
+            counts(1) = nb
+            call check(ls_remesh_job_advance(job, gathered, counts) == LS_OK, "job advance")
+            stages = stages + 1
+        end do
+        call check(done == 1, "job done")
+        call check(stages >= 3, "job: its stages")
+        call check(ls_remesh_job_mesh(job, jmesh) == LS_OK, "job mesh")
+        call check(loopsurf_trimesh_arrays(jmesh, jx, jt, jtri, jvw) == LS_OK, "job mesh arrays")
+        call ls_trimesh_free(jmesh)
+        call check(loopsurf_remesh(surf, jo, rx, rt, rtri, rvw, rface, dev) == LS_OK, "remesh in 2 parts")
+        call check(size(jx, 2) == size(rx, 2), "job: the nodes of the remesh")
+        if (size(jx, 2) == size(rx, 2)) call check(all(jx == rx), "job: bit for bit")
+        call check(ls_remesh_job_piece(job, piece, gids) == LS_OK, "job piece")
+        call check(ls_trimesh_counts(piece, nv, nt, nh) == LS_OK, "piece counts")
+        call c_f_pointer(gids, ids, [nv])
+        call check(int(nv) == size(rx, 2), "one rank's piece is the whole mesh")
+        call check(minval(ids) == 0, "piece ids 0-based")
+        call check(maxval(ids) == nv - 1, "piece ids: every node")
+        call ls_free_array(gids)
+        call ls_trimesh_free(piece)
+        call ls_remesh_job_free(job)
+    end block
     ! The quality remesher, 1-based: vertices on the surface at their
     ! parameters, faces of the model (the one curve bounds no face: 1 face).
     block

@@ -30,8 +30,9 @@ extern "C" {
  * Every function returning int returns LS_OK (0) or a negative LS_ERR_*
  * code and then sets the thread-local message ls_last_error() returns. The
  * opaque handles: a net is prepared, frozen into a surface, a part of a
- * partitioned net is a net of its own with a surface of its own, and
- * meshes on the surface are handed over as ls_trimesh.
+ * partitioned net is a net of its own with a surface of its own, meshes on
+ * the surface are handed over as ls_trimesh, and remeshing in parts among
+ * ranks is an ls_remesh_job.
  * ========================================================================== */
 
 // Success.
@@ -92,6 +93,10 @@ typedef struct ls_part ls_part;
 // closest points over its owned triangles, in the whole's triangle ids;
 // safe to query from many threads at once.
 typedef struct ls_part_surface ls_part_surface;
+
+// Remeshing in parts shared out among ranks (`ls_remesh_job_new`): the
+// current stage, this rank's outcomes of it and the bytes it sent.
+typedef struct ls_remesh_job ls_remesh_job;
 
 // An immutable limit surface, safe to query from many threads at once.
 typedef struct ls_surface ls_surface;
@@ -783,7 +788,8 @@ int ls_adapt(const ls_surface *surface, const ls_adapt_options *options, ls_trim
  * Meshes
  *
  * Meshes on the surface (ls_trimesh): the chart mesher, the quality
- * remesher, curving another tool's mesh, and the model labels of any mesh.
+ * remesher (whole, or in parts shared out among the ranks of a caller's
+ * MPI job), curving another tool's mesh, and the model labels of any mesh.
  * ========================================================================== */
 
 // Options of `ls_mesh`: fill with `ls_mesh_options_default`, then change
@@ -944,6 +950,58 @@ int ls_remesh_options_default(ls_remesh_options *options);
 // triangles); release it with `ls_trimesh_free`. `ls_mesh_hard_edges`
 // gives its edges along the curves.
 int ls_remesh(const ls_surface *surface, const ls_remesh_options *options, ls_trimesh **mesh);
+
+// Starts remeshing `surface` in `options->parts` parts as rank `rank` of
+// `ranks` (0 ≤ rank < ranks), and writes the job to `*job`, to be
+// released with `ls_remesh_job_free`. Every rank makes its job with the
+// same surface (loaded and tagged alike, e.g. each from the same file)
+// and the same options. `options` may be NULL for the defaults (which
+// remesh in 1 part: one piece remeshed as a part, not necessarily
+// `ls_remesh`'s whole run). `options->threads` threads run this rank's
+// tasks (0: the library's pool).
+//
+// The job borrows `surface`: keep it until the job is freed.
+int ls_remesh_job_new(const ls_surface *surface,
+                      const ls_remesh_options *options,
+                      int rank,
+                      int ranks,
+                      ls_remesh_job **job);
+
+// Writes 1 to `*done` when the mesh is made, else 0; and, if `stage` is
+// not NULL, the name of the current stage ("sizes", "first pass",
+// "interface band", "interface crossings", "done"), a static string.
+int ls_remesh_job_done(const ls_remesh_job *job, int *done, const char **stage);
+
+// Runs this rank's tasks of the current stage and writes their outcomes
+// as bytes to `*bytes` and their number to `*n` (possibly 0 bytes' worth
+// of tasks, never 0 bytes). The bytes belong to the job and stay valid
+// until the next call on it; send them to every rank. Calling it again
+// in the same stage runs the tasks again.
+int ls_remesh_job_run(ls_remesh_job *job, const uint8_t **bytes, size_t *n);
+
+// Advances the job to its next stage with every rank's bytes from
+// `ls_remesh_job_run`: `counts[q]` bytes from rank q, for q = 0 to ranks
+// − 1, one after another in `all` (what `MPI_Allgatherv` gathers). This
+// rank's own stretch is skipped: it keeps its outcomes. Damaged bytes
+// are `LS_ERR_BAD_STREAM`, a task missing or sent twice
+// `LS_ERR_INVALID_ARGUMENT`; the job then stays where it was.
+int ls_remesh_job_advance(ls_remesh_job *job, const uint8_t *all, const size_t *counts);
+
+// The finished mesh, whole (every rank holds it), as `ls_remesh` hands
+// it over: a new `ls_trimesh` in `*mesh`, released with
+// `ls_trimesh_free`. Before the job is done: `LS_ERR_INVALID_ARGUMENT`.
+int ls_remesh_job_mesh(const ls_remesh_job *job, ls_trimesh **mesh);
+
+// This rank's piece of the finished mesh: the triangles of the parts it
+// meshed in the first pass (every triangle of the whole is in exactly
+// one rank's piece), as a new `ls_trimesh` in `*piece` with its nodes
+// numbered 0 to n − 1, and in `*global_ids` a new array of n node ids
+// in the whole mesh (`ls_free_array`): a node on the border between two
+// pieces has the same id in both.
+int ls_remesh_job_piece(const ls_remesh_job *job, ls_trimesh **piece, int64_t **global_ids);
+
+// Releases a job; NULL is ignored.
+void ls_remesh_job_free(ls_remesh_job *job);
 
 // Writes the default options of `ls_mesh_curve` into `options`.
 int ls_mesh_curve_options_default(ls_mesh_curve_options *options);

@@ -1107,6 +1107,107 @@ static void test_remesh(const char* data_dir) {
     ls_net_free(net);
 }
 
+/* Remeshing in parts shared between two ranks, driven here in one
+   thread: each stage both jobs run their tasks, and each advances with
+   both ranks' bytes, as MPI_Allgatherv would give them. The mesh is
+   ls_remesh's in the same number of parts, bit for bit; the two pieces
+   hold every triangle once, their nodes the whole's by global id. */
+static void test_remesh_job(void) {
+    ls_surface* surface = octahedron(NULL);
+    ls_remesh_options o;
+    EXPECT(ls_remesh_options_default(&o), LS_OK);
+    o.size = 0.3;
+    o.tolerance = 1e-2;
+    o.parts = 3;
+    ls_trimesh* threaded = NULL;
+    EXPECT(ls_remesh(surface, &o, &threaded), LS_OK);
+    if (!threaded) return;
+    mesh_view t = view(threaded);
+
+    ls_remesh_job* const untouched = (ls_remesh_job*)&SENTINEL;
+    ls_remesh_job* jobs[2] = {untouched, untouched};
+    EXPECT(ls_remesh_job_new(surface, &o, 2, 2, &jobs[0]), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "rank 2 of 2") != NULL && jobs[0] == untouched);
+    EXPECT(ls_remesh_job_new(NULL, &o, 0, 2, &jobs[0]), LS_ERR_NULL_POINTER);
+    ls_remesh_options b = o;
+    b.size = -1;
+    EXPECT(ls_remesh_job_new(surface, &b, 0, 2, &jobs[0]), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "size") != NULL && jobs[0] == untouched);
+    for (int r = 0; r < 2; r++) EXPECT(ls_remesh_job_new(surface, &o, r, 2, &jobs[r]), LS_OK);
+    if (jobs[0] == untouched || jobs[1] == untouched) return;
+
+    /* Nothing to hand over before the job is done, nor to advance with
+       before this rank has run its tasks. */
+    ls_trimesh* mesh = (ls_trimesh*)&SENTINEL;
+    EXPECT(ls_remesh_job_mesh(jobs[0], &mesh), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "sizes stage") != NULL && mesh == (ls_trimesh*)&SENTINEL);
+    size_t counts[2] = {0, 0};
+    EXPECT(ls_remesh_job_advance(jobs[0], NULL, counts), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "ls_remesh_job_run") != NULL);
+
+    int stages = 0, done = 0, damaged_once = 0;
+    const char* stage = NULL;
+    EXPECT(ls_remesh_job_done(jobs[0], &done, &stage), LS_OK);
+    CHECK(done == 0 && stage && strcmp(stage, "sizes") == 0);
+    while (!done && stages < 10) {
+        const uint8_t* bytes[2] = {NULL, NULL};
+        size_t n[2] = {0, 0};
+        for (int r = 0; r < 2; r++) EXPECT(ls_remesh_job_run(jobs[r], &bytes[r], &n[r]), LS_OK);
+        uint8_t* all = malloc(n[0] + n[1]);
+        memcpy(all, bytes[0], n[0]);
+        memcpy(all + n[0], bytes[1], n[1]);
+        if (!damaged_once && n[1] > 40) {
+            /* Rank 1's bytes damaged on the way: refused, rank 0 as it was. */
+            all[n[0] + n[1] - 9] ^= 1;
+            EXPECT(ls_remesh_job_advance(jobs[0], all, n), LS_ERR_BAD_STREAM);
+            CHECK(strstr(ls_last_error(), "rank 1") != NULL);
+            all[n[0] + n[1] - 9] ^= 1;
+            damaged_once = 1;
+        }
+        for (int r = 0; r < 2; r++) EXPECT(ls_remesh_job_advance(jobs[r], all, n), LS_OK);
+        free(all);
+        stages++;
+        int other = -1;
+        EXPECT(ls_remesh_job_done(jobs[0], &done, &stage), LS_OK);
+        EXPECT(ls_remesh_job_done(jobs[1], &other, NULL), LS_OK);
+        CHECK(other == done);
+    }
+    CHECK(done == 1 && damaged_once && stages >= 3 && strcmp(stage, "done") == 0);
+    const uint8_t* more = NULL;
+    size_t nmore = 0;
+    EXPECT(ls_remesh_job_run(jobs[0], &more, &nmore), LS_ERR_INVALID_ARGUMENT);
+
+    for (int r = 0; r < 2; r++) {
+        EXPECT(ls_remesh_job_mesh(jobs[r], &mesh), LS_OK);
+        mesh_view m = view(mesh);
+        CHECK(m.nv == t.nv && m.nt == t.nt);
+        CHECK(memcmp(m.tris, t.tris, 3 * t.nt * sizeof *t.tris) == 0);
+        CHECK(memcmp(m.xyz, t.xyz, 3 * t.nv * sizeof *t.xyz) == 0);
+        ls_trimesh_free(mesh);
+    }
+    size_t held = 0;
+    int ids_ok = 1;
+    for (int r = 0; r < 2; r++) {
+        ls_trimesh* piece = NULL;
+        int64_t* ids = NULL;
+        EXPECT(ls_remesh_job_piece(jobs[r], &piece, &ids), LS_OK);
+        if (!piece) continue;
+        mesh_view p = view(piece);
+        held += p.nt;
+        for (size_t i = 0; i < p.nv; i++)
+            ids_ok &= ids[i] >= 0 && (size_t)ids[i] < t.nv &&
+                      memcmp(&p.xyz[3 * i], &t.xyz[3 * ids[i]], 3 * sizeof(double)) == 0;
+        ls_free_array(ids);
+        ls_trimesh_free(piece);
+    }
+    CHECK(held == t.nt && ids_ok);
+    ls_remesh_job_free(jobs[0]);
+    ls_remesh_job_free(jobs[1]);
+    ls_remesh_job_free(NULL);
+    ls_trimesh_free(threaded);
+    ls_surface_free(surface);
+}
+
 /* One ls_adapt call with the given options; its mesh, or NULL. */
 static ls_trimesh* adapt(ls_surface* surface, double angle, double tolerance, int levels, int to_limit, int status) {
     ls_adapt_options o;
@@ -1713,6 +1814,7 @@ int main(int argc, char** argv) {
     test_mesh();
     test_mesh_labels(data_dir);
     test_remesh(data_dir);
+    test_remesh_job();
     test_mesh_curve();
     test_adapt();
     test_streams();

@@ -22,6 +22,17 @@ pub struct ls_part(pub(crate) loopsurf::partition::Part);
 /// safe to query from many threads at once.
 pub struct ls_part_surface(pub(crate) loopsurf::partsurface::PartSurface);
 
+/// Remeshing in parts shared out among ranks (`ls_remesh_job_new`): the
+/// current stage, this rank's outcomes of it and the bytes it sent.
+pub struct ls_remesh_job {
+    pub(crate) job: loopsurf::remesh::PartsJob<'static>,
+    pub(crate) rank: usize,
+    pub(crate) ranks: usize,
+    pub(crate) pool: Option<rayon::ThreadPool>,
+    pub(crate) own: Option<Vec<(usize, loopsurf::remesh::TaskOutcome)>>,
+    pub(crate) sent: Vec<u8>,
+}
+
 /// A mesh on the surface, made by `ls_mesh`, `ls_remesh`, `ls_adapt` or
 /// `ls_mesh_curve`; immutable, and safe to read from many threads at once.
 pub struct ls_trimesh {

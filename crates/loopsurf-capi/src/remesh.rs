@@ -7,7 +7,7 @@ use crate::surface::ls_surface;
 use crate::trimesh::{c_ints, ls_trimesh};
 use loopsurf::mesh::DEFAULT_ADAPT_TOLERANCE;
 use loopsurf::remesh::{DEFAULT_GRADATION, DEFAULT_MAX_TRIANGLES};
-use loopsurf::Remesher;
+use loopsurf::{Remesher, Surface, SurfaceMesh};
 use std::ffi::c_int;
 
 /// Options of `ls_remesh`: fill with `ls_remesh_options_default`, then
@@ -93,51 +93,75 @@ pub unsafe extern "C" fn ls_remesh(
         let surface = &input(surface, "surface")?.0;
         let o = read_options(options, "options")?;
         let out = output(mesh, "mesh")?;
-        let bad = |m: String| Err(Fail::new(LS_ERR_INVALID_ARGUMENT, m));
-        if !(o.size.is_finite() && o.size >= 0.0) {
-            return bad(format!(
-                "size = {}: must be positive, or 0 for none",
-                o.size
-            ));
-        }
-        if !(0.0..1.0).contains(&o.tolerance) {
-            return bad(format!(
-                "tolerance = {}: must lie in (0, 1), or be 0 for none",
-                o.tolerance
-            ));
-        }
-        if !(o.gradation.is_finite() && o.gradation > 1.0) {
-            return bad(format!(
-                "gradation = {}: must be greater than 1",
-                o.gradation
-            ));
-        }
-        if o.parts == 0 {
-            return bad("parts = 0: must be at least 1".into());
-        }
-        let mut remesher = Remesher::new(surface)
-            .parts(o.parts)
-            .adapt_curvature(flag(o.adapt_curvature, "adapt_curvature")?)
-            .gradation(o.gradation)
-            .max_triangles(budget(o.max_triangles)?);
-        if o.size != 0.0 {
-            remesher = remesher.size(o.size);
-        }
-        if o.tolerance != 0.0 {
-            remesher = remesher.tolerance(o.tolerance);
-        }
-        let made = match o.threads {
-            0 => remesher.run()?,
-            n => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| Fail::new(LS_ERR_INVALID_ARGUMENT, format!("threads = {n}: {e}")))?
-                .install(|| remesher.run())?,
+        let remesher = remesher(surface, &o)?;
+        let made = match pool(o.threads)? {
+            None => remesher.run()?,
+            Some(pool) => pool.install(|| remesher.run())?,
         };
-        let mut result = ls_trimesh::straight(&made.points, &made.triangles, &made.params)?;
-        result.element_face = Some(c_ints(&made.faces));
-        result.deviation = made.deviation.map(|d| d / made.diagonal);
+        let result = trimesh_of(&made)?;
         result.hand_over(out);
         Ok(())
     })
+}
+
+/// The remesher `o` describes, its values checked.
+pub(crate) fn remesher<'a>(
+    surface: &'a Surface,
+    o: &ls_remesh_options,
+) -> Result<Remesher<'a>, Fail> {
+    let bad = |m: String| Err(Fail::new(LS_ERR_INVALID_ARGUMENT, m));
+    if !(o.size.is_finite() && o.size >= 0.0) {
+        return bad(format!(
+            "size = {}: must be positive, or 0 for none",
+            o.size
+        ));
+    }
+    if !(0.0..1.0).contains(&o.tolerance) {
+        return bad(format!(
+            "tolerance = {}: must lie in (0, 1), or be 0 for none",
+            o.tolerance
+        ));
+    }
+    if !(o.gradation.is_finite() && o.gradation > 1.0) {
+        return bad(format!(
+            "gradation = {}: must be greater than 1",
+            o.gradation
+        ));
+    }
+    if o.parts == 0 {
+        return bad("parts = 0: must be at least 1".into());
+    }
+    let mut remesher = Remesher::new(surface)
+        .parts(o.parts)
+        .adapt_curvature(flag(o.adapt_curvature, "adapt_curvature")?)
+        .gradation(o.gradation)
+        .max_triangles(budget(o.max_triangles)?);
+    if o.size != 0.0 {
+        remesher = remesher.size(o.size);
+    }
+    if o.tolerance != 0.0 {
+        remesher = remesher.tolerance(o.tolerance);
+    }
+    Ok(remesher)
+}
+
+/// A pool of `threads` threads, or none (0) for the library's own.
+pub(crate) fn pool(threads: usize) -> Result<Option<rayon::ThreadPool>, Fail> {
+    match threads {
+        0 => Ok(None),
+        n => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map(Some)
+            .map_err(|e| Fail::new(LS_ERR_INVALID_ARGUMENT, format!("threads = {n}: {e}"))),
+    }
+}
+
+/// A remeshed mesh as an `ls_trimesh`: straight triangles, node
+/// parameters, element faces and the measured deviation.
+pub(crate) fn trimesh_of(made: &SurfaceMesh) -> Result<ls_trimesh, Fail> {
+    let mut result = ls_trimesh::straight(&made.points, &made.triangles, &made.params)?;
+    result.element_face = Some(c_ints(&made.faces));
+    result.deviation = made.deviation.map(|d| d / made.diagonal);
+    Ok(result)
 }

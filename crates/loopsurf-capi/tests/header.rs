@@ -14,7 +14,7 @@ use std::path::Path;
 const SECTIONS: &[(&str, &str, &[&str])] = &[
     (
         "Status, handles, version and memory",
-        "Every function returning int returns LS_OK (0) or a negative LS_ERR_* code and then sets the thread-local message ls_last_error() returns. The opaque handles: a net is prepared, frozen into a surface, a part of a partitioned net is a net of its own with a surface of its own, and meshes on the surface are handed over as ls_trimesh.",
+        "Every function returning int returns LS_OK (0) or a negative LS_ERR_* code and then sets the thread-local message ls_last_error() returns. The opaque handles: a net is prepared, frozen into a surface, a part of a partitioned net is a net of its own with a surface of its own, meshes on the surface are handed over as ls_trimesh, and remeshing in parts among ranks is an ls_remesh_job.",
         &["status.rs", "handles.rs"],
     ),
     (
@@ -49,8 +49,8 @@ const SECTIONS: &[(&str, &str, &[&str])] = &[
     ),
     (
         "Meshes",
-        "Meshes on the surface (ls_trimesh): the chart mesher, the quality remesher, curving another tool's mesh, and the model labels of any mesh.",
-        &["trimesh.rs", "mesh.rs", "remesh.rs", "mesh_curve.rs", "mesh_labels.rs"],
+        "Meshes on the surface (ls_trimesh): the chart mesher, the quality remesher (whole, or in parts shared out among the ranks of a caller's MPI job), curving another tool's mesh, and the model labels of any mesh.",
+        &["trimesh.rs", "mesh.rs", "remesh.rs", "remesh_job.rs", "mesh_curve.rs", "mesh_labels.rs"],
     ),
     (
         "Streams",

@@ -268,6 +268,9 @@ impl<'a> Remesher<'a> {
     /// Remeshing in [`Remesher::parts`] parts as a job of stages whose
     /// tasks may run anywhere, for an MPI program to share out among its
     /// ranks ([`PartsJob`]); [`Remesher::run`] runs them all on threads.
+    /// In one part, the job remeshes the whole surface as one part: it
+    /// need not give the mesh [`Remesher::run`] gives in one part, which
+    /// remeshes the whole surface directly.
     pub fn parts_job(&self) -> Result<PartsJob<'a>> {
         PartsJob::new(self.clone(), self.parts)
     }

@@ -15,7 +15,7 @@
 use super::cuts::{blobs, control_rings, majority, mesh_rings, shared_vertices};
 use super::join::{join, kept, Joined};
 use super::outcome::{Outcome, TaskOutcome};
-use super::work::PartWork;
+use super::work::{run_tasks, PartWork};
 use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
@@ -52,6 +52,8 @@ enum Stage {
     /// interface, each connected blob uncut.
     Crossings(Box<BandPass>),
     Done(SurfaceMesh),
+    /// A stage failed to advance: what went wrong.
+    Failed(String),
 }
 
 struct FirstPass {
@@ -126,6 +128,7 @@ impl<'a> PartsJob<'a> {
             Stage::Band(_) => "interface band",
             Stage::Crossings(_) => "interface crossings",
             Stage::Done(_) => "done",
+            Stage::Failed(_) => "failed",
         }
     }
 
@@ -147,7 +150,7 @@ impl<'a> PartsJob<'a> {
                 let count = per_part(&b.owner, b.cover.len());
                 b.parts.iter().map(|&p| count[p as usize]).collect()
             }
-            Stage::Done(_) => Vec::new(),
+            Stage::Done(_) | Stage::Failed(_) => Vec::new(),
         }
     }
 
@@ -185,7 +188,9 @@ impl<'a> PartsJob<'a> {
                         &built
                     }
                 };
-                Outcome::Piece(work.remesh(&f.chart, &f.owner, &f.pins, None, i as u32)?)
+                Outcome::Piece(Box::new(
+                    work.remesh(&f.chart, &f.owner, &f.pins, None, i as u32)?,
+                ))
             }
             Stage::Band(b) | Stage::Crossings(b) => {
                 let p = b.parts[i];
@@ -197,10 +202,22 @@ impl<'a> PartsJob<'a> {
                     Some(&b.pass.shrunk),
                 )?;
                 let piece = work.remesh(&b.pass.mesh, &b.owner, &b.pins, Some(&b.pass.sizes), p)?;
-                Outcome::Piece(piece)
+                Outcome::Piece(Box::new(piece))
             }
-            Stage::Done(_) => unreachable!("a done job has no task"),
+            Stage::Done(_) | Stage::Failed(_) => unreachable!("no task at the end"),
         }))
+    }
+
+    /// Runs the tasks `tasks` of the current stage on the current rayon
+    /// pool's threads, the heaviest first; their outcomes in the order of
+    /// `tasks`.
+    pub fn run_tasks(&self, tasks: &[usize]) -> Result<Vec<TaskOutcome>> {
+        let weights = self.weights();
+        let of_tasks: Vec<usize> = tasks
+            .iter()
+            .map(|&i| weights.get(i).copied().unwrap_or(0))
+            .collect();
+        run_tasks(&of_tasks, |j| self.run_task(tasks[j]))
     }
 
     /// Part p's work in the first partition.
@@ -212,8 +229,14 @@ impl<'a> PartsJob<'a> {
     }
 
     /// Advances to the next stage with the current stage's outcomes, one
-    /// per task, in task order.
+    /// per task, in task order. A wrong number of outcomes leaves the job
+    /// as it was; a stage that fails to advance leaves it failed.
     pub fn advance(&mut self, outcomes: Vec<TaskOutcome>) -> Result<()> {
+        if let Stage::Failed(why) = &self.stage {
+            return Err(Error::InvalidArgument(format!(
+                "the job failed before: {why}"
+            )));
+        }
         if outcomes.len() != self.tasks() {
             return Err(Error::InvalidArgument(format!(
                 "{} outcomes for the {} stage's {} tasks",
@@ -222,8 +245,22 @@ impl<'a> PartsJob<'a> {
                 self.tasks()
             )));
         }
-        let stage = std::mem::replace(&mut self.stage, Stage::Sizes);
-        self.stage = match stage {
+        let stage = std::mem::replace(&mut self.stage, Stage::Failed(String::new()));
+        match self.next_stage(stage, outcomes) {
+            Ok(next) => {
+                self.stage = next;
+                Ok(())
+            }
+            Err(e) => {
+                self.stage = Stage::Failed(e.to_string());
+                Err(e)
+            }
+        }
+    }
+
+    /// The stage after `stage`, from its outcomes.
+    fn next_stage(&mut self, stage: Stage, outcomes: Vec<TaskOutcome>) -> Result<Stage> {
+        Ok(match stage {
             Stage::Sizes => Stage::First(Box::new(self.first_pass(outcomes)?)),
             Stage::First(f) => {
                 self.works.iter_mut().for_each(|w| *w = None);
@@ -250,9 +287,8 @@ impl<'a> PartsJob<'a> {
                 let keep = kept(&b.pass, &b.owner);
                 Stage::Done(join_pieces(&self.remesher, vec![keep], outcomes)?.mesh)
             }
-            Stage::Done(mesh) => Stage::Done(mesh),
-        };
-        Ok(())
+            done @ (Stage::Done(_) | Stage::Failed(_)) => done,
+        })
     }
 
     /// The first pass from the sizes: the chart mesh at the largest size
@@ -443,7 +479,7 @@ fn join_pieces(
 ) -> Result<Joined> {
     for outcome in outcomes {
         match outcome.0 {
-            Outcome::Piece(piece) => pieces.push(piece),
+            Outcome::Piece(piece) => pieces.push(*piece),
             Outcome::Largest(..) => return Err(wrong_outcome("a remeshing")),
         }
     }

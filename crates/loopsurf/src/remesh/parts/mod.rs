@@ -53,7 +53,6 @@ use crate::error::Result;
 use crate::mesh::SurfaceMesh;
 pub use job::PartsJob;
 pub use outcome::{outcomes_from_bytes, outcomes_to_bytes, TaskOutcome};
-use work::run_tasks;
 
 /// The second pass remeshes the vertices within this many edges of a
 /// first-pass interface.
@@ -78,7 +77,8 @@ const AVOID_RINGS: usize = 1;
 pub(super) fn run(remesher: &Remesher, k: usize) -> Result<SurfaceMesh> {
     let mut job = PartsJob::new(remesher.clone(), k)?;
     while !job.is_done() {
-        let outcomes = run_tasks(&job.weights(), |i| job.run_task(i))?;
+        let all: Vec<usize> = (0..job.tasks()).collect();
+        let outcomes = job.run_tasks(&all)?;
         job.advance(outcomes)?;
     }
     job.into_mesh()

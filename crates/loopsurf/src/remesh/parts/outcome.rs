@@ -36,7 +36,7 @@ pub(super) enum Outcome {
     /// A part's largest size, and its work where it was built here (not
     /// sent: the rank that built it keeps it for its first pass).
     Largest(f64, Option<Box<PartWork>>),
-    Piece(Piece),
+    Piece(Box<Piece>),
 }
 
 impl TaskOutcome {
@@ -129,12 +129,12 @@ impl TaskOutcome {
                 let diagonal = r.f64();
                 let deviation = (nn == 2).then(|| r.f64());
                 let mesh = without_curves(points, triangles, params, faces, deviation, diagonal);
-                Ok(TaskOutcome(Outcome::Piece(Piece {
+                Ok(TaskOutcome(Outcome::Piece(Box::new(Piece {
                     mesh,
                     pinned,
                     sizes,
                     shrunk,
-                })))
+                }))))
             }
             _ => Err(bad(format!(
                 "tag {tag} with {nn} numbers: neither a largest size nor a piece"

@@ -160,7 +160,7 @@ impl PartWork {
         p: u32,
     ) -> Result<(SurfaceMesh, Vec<u32>)> {
         let mine: Vec<usize> = (0..start.triangles.len())
-            .filter(|&t| owner[t] == p as u32)
+            .filter(|&t| owner[t] == p)
             .collect();
         let fans = fans(&mine.iter().map(|&t| start.triangles[t]).collect::<Vec<_>>());
         let mut local = HashMap::new();
@@ -233,10 +233,7 @@ pub(super) fn run_tasks<T: Send>(
         for _ in 0..workers {
             scope.spawn(|| {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(inner).build();
-                loop {
-                    let Some(&i) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
-                        break;
-                    };
+                while let Some(&i) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
                     let outcome = match &pool {
                         Ok(pool) => pool.install(|| task(i)),
                         Err(e) => Err(Error::InvalidArgument(format!("no thread pool: {e}"))),

@@ -1,0 +1,300 @@
+/* loopsurf-mpi: `loopsurf mesh` on the ranks of an MPI job. Every rank
+ * runs it with the same arguments; each reads the control net, the ranks
+ * share out the remeshing in parts (ls_remesh_job: each stage, every rank
+ * meshes its share of the parts and MPI_Allgatherv hands the pieces to
+ * all), and each writes its piece of the mesh as a .vtu with the global
+ * node ids, rank 0 the .pvtu that names them. The pieces merged on their
+ * global ids are the mesh `loopsurf mesh --parts K` makes, bit for bit,
+ * on any number of ranks.
+ *
+ * Usage: mpirun -np N loopsurf-mpi MESH [--hard-angle DEG] [--repair]
+ *          [--size H] [--tolerance EPS] [--adapt curvature]
+ *          [--gradation G] [--max-triangles N] [--parts K]
+ *          [--threads T] -o OUT.pvtu
+ * The options mean what they mean to `loopsurf mesh`; K defaults to the
+ * number of ranks (at least 2), T to the library's default. Bad
+ * arguments or input: one line on rank 0's stderr, exit status 2. */
+#include <loopsurf.h>
+#include <mpi.h>
+
+#include <errno.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    const char* input;
+    const char* output;
+    double hard_angle;
+    int has_hard_angle, repair, adapt;
+    ls_remesh_options remesh;
+    int has_size, has_tolerance;
+} args;
+
+static int rank_, ranks_;
+
+/* One line on rank 0, then every rank leaves with status 2. */
+static void refuse(const char* fmt, const char* a, const char* b) {
+    if (rank_ == 0) {
+        fprintf(stderr, "loopsurf-mpi: error: ");
+        fprintf(stderr, fmt, a, b);
+        fprintf(stderr, "\n");
+    }
+    MPI_Finalize();
+    exit(2);
+}
+
+/* After set-up, where every rank should fail alike: the lowest rank
+ * that failed says why in one line, and every rank leaves with status 2
+ * (a rank that failed alone would leave the others waiting). */
+static void agree(const char* error) {
+    int mine = error ? rank_ : ranks_, first = ranks_;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first == ranks_) return;
+    if (rank_ == first) fprintf(stderr, "loopsurf-mpi: error: %s\n", error);
+    MPI_Finalize();
+    exit(2);
+}
+
+/* A library call that failed on some rank: its message, then status 2
+ * on every rank (MPI_Abort, since the others may wait in a collective). */
+static void check(int status, const char* what) {
+    if (status != LS_OK) {
+        fprintf(stderr, "loopsurf-mpi: error: rank %d: %s: %s\n", rank_, what, ls_last_error());
+        MPI_Abort(MPI_COMM_WORLD, 2);
+    }
+}
+
+static double number(const char* flag, const char* text) {
+    char* end = NULL;
+    errno = 0;
+    double x = strtod(text, &end);
+    if (errno != 0 || end == text || *end != '\0') refuse("%s %s: not a number", flag, text);
+    return x;
+}
+
+static size_t count(const char* flag, const char* text) {
+    char* end = NULL;
+    errno = 0;
+    unsigned long long n = strtoull(text, &end, 10);
+    if (errno != 0 || end == text || *end != '\0' || text[0] == '-')
+        refuse("%s %s: not a count", flag, text);
+    return (size_t)n;
+}
+
+static args parse(int argc, char** argv) {
+    args a;
+    memset(&a, 0, sizeof a);
+    check(ls_remesh_options_default(&a.remesh), "defaults");
+    a.remesh.parts = 0;
+    for (int i = 1; i < argc; i++) {
+        const char* f = argv[i];
+        const char* v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = strcmp(f, "--hard-angle") == 0 || strcmp(f, "--size") == 0 ||
+                    strcmp(f, "--tolerance") == 0 || strcmp(f, "--adapt") == 0 ||
+                    strcmp(f, "--gradation") == 0 || strcmp(f, "--max-triangles") == 0 ||
+                    strcmp(f, "--parts") == 0 || strcmp(f, "--threads") == 0 ||
+                    strcmp(f, "-o") == 0 || strcmp(f, "--output") == 0;
+        if (takes && v == NULL) refuse("%s needs a value%s", f, "");
+        if (strcmp(f, "--hard-angle") == 0) {
+            a.hard_angle = number(f, v);
+            a.has_hard_angle = 1;
+        } else if (strcmp(f, "--repair") == 0) {
+            a.repair = 1;
+            continue;
+        } else if (strcmp(f, "--size") == 0) {
+            a.remesh.size = number(f, v);
+            a.has_size = 1;
+        } else if (strcmp(f, "--tolerance") == 0) {
+            a.remesh.tolerance = number(f, v);
+            a.has_tolerance = 1;
+        } else if (strcmp(f, "--adapt") == 0) {
+            if (strcmp(v, "curvature") != 0) refuse("--adapt %s: only curvature%s", v, "");
+            a.adapt = 1;
+        } else if (strcmp(f, "--gradation") == 0) {
+            a.remesh.gradation = number(f, v);
+        } else if (strcmp(f, "--max-triangles") == 0) {
+            a.remesh.max_triangles = count(f, v);
+        } else if (strcmp(f, "--parts") == 0) {
+            a.remesh.parts = count(f, v);
+            if (a.remesh.parts == 0) refuse("--parts %s: must be at least 1%s", v, "");
+        } else if (strcmp(f, "--threads") == 0) {
+            a.remesh.threads = count(f, v);
+        } else if (strcmp(f, "-o") == 0 || strcmp(f, "--output") == 0) {
+            a.output = v;
+        } else if (f[0] == '-') {
+            refuse("unknown option %s%s", f, "");
+        } else if (a.input == NULL) {
+            a.input = f;
+            continue;
+        } else {
+            refuse("a second input %s (the first is %s)", f, a.input);
+        }
+        i++;
+    }
+    if (a.input == NULL) refuse("no input mesh given%s%s", "", "");
+    if (a.output == NULL) refuse("no output given (-o OUT.pvtu)%s%s", "", "");
+    size_t n = strlen(a.output);
+    if (n < 5 || strcmp(a.output + n - 5, ".pvtu") != 0)
+        refuse("-o %s: the output is a .pvtu (one .vtu piece per rank beside it)%s", a.output, "");
+    /* As `loopsurf mesh`: with neither a size nor a tolerance, the
+     * curvature-adaptive mesh at the default tolerance. */
+    int adapt = a.adapt || (!a.has_size && !a.has_tolerance);
+    a.remesh.adapt_curvature = adapt;
+    if (!a.has_size) a.remesh.size = 0;
+    if (!a.has_tolerance) a.remesh.tolerance = 0;
+    if (a.remesh.parts == 0) a.remesh.parts = ranks_ < 2 ? 2 : (size_t)ranks_;
+    return a;
+}
+
+/* Every rank's bytes to every rank, in rank order (MPI_Allgatherv counts
+ * are ints: a stage's bytes past 2 GiB are refused). */
+static uint8_t* gather(const uint8_t* mine, size_t n, size_t* counts) {
+    unsigned long long own = n, all[1024];
+    unsigned long long* each = ranks_ <= 1024 ? all : malloc(sizeof *each * (size_t)ranks_);
+    MPI_Allgather(&own, 1, MPI_UNSIGNED_LONG_LONG, each, 1, MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
+    int* c = malloc(sizeof *c * (size_t)ranks_);
+    int* at = malloc(sizeof *at * (size_t)ranks_);
+    unsigned long long total = 0;
+    for (int q = 0; q < ranks_; q++) {
+        counts[q] = (size_t)each[q];
+        if (total + each[q] > INT_MAX) {
+            fprintf(stderr, "loopsurf-mpi: error: a stage's outcomes pass 2 GiB (MPI_Allgatherv counts are ints)\n");
+            MPI_Abort(MPI_COMM_WORLD, 2);
+        }
+        c[q] = (int)each[q];
+        at[q] = (int)total;
+        total += each[q];
+    }
+    uint8_t* bytes = malloc(total ? total : 1);
+    MPI_Allgatherv(mine, (int)n, MPI_BYTE, bytes, c, at, MPI_BYTE, MPI_COMM_WORLD);
+    if (each != all) free(each);
+    free(c);
+    free(at);
+    return bytes;
+}
+
+/* OUT.pvtu's piece for rank q: OUT_q.vtu, and its name beside the .pvtu. */
+static void piece_name(const char* out, int q, char* path, size_t size, const char** base) {
+    size_t n = strlen(out) - 5;
+    snprintf(path, size, "%.*s_%d.vtu", (int)n, out, q);
+    const char* slash = strrchr(path, '/');
+    *base = slash ? slash + 1 : path;
+}
+
+static void write_piece(const char* path, const ls_trimesh* m, const int64_t* ids) {
+    size_t nodes = 0, elements = 0, per = 0;
+    const double* xyz = NULL;
+    const int32_t* tri = NULL;
+    const int32_t* face = NULL;
+    check(ls_trimesh_counts(m, &nodes, &elements, &per), "piece counts");
+    check(ls_trimesh_xyz(m, &xyz), "piece nodes");
+    check(ls_trimesh_elements(m, &tri), "piece triangles");
+    check(ls_trimesh_element_faces(m, &face), "piece faces");
+    FILE* f = fopen(path, "w");
+    if (f == NULL) {
+        fprintf(stderr, "loopsurf-mpi: error: rank %d: %s: %s\n", rank_, path, strerror(errno));
+        MPI_Abort(MPI_COMM_WORLD, 2);
+    }
+    fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+    fprintf(f, "<UnstructuredGrid>\n<Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", nodes, elements);
+    fprintf(f, "<PointData GlobalIds=\"GlobalNodeId\">\n<DataArray type=\"Int64\" Name=\"GlobalNodeId\" format=\"ascii\">\n");
+    for (size_t i = 0; i < nodes; i++) fprintf(f, "%lld\n", (long long)ids[i]);
+    fprintf(f, "</DataArray>\n</PointData>\n<CellData>\n<DataArray type=\"Int32\" Name=\"face\" format=\"ascii\">\n");
+    for (size_t e = 0; e < elements; e++) fprintf(f, "%d\n", face[e]);
+    fprintf(f, "</DataArray>\n</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for (size_t i = 0; i < nodes; i++) fprintf(f, "%.17g %.17g %.17g\n", xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    fprintf(f, "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    for (size_t e = 0; e < elements; e++) fprintf(f, "%d %d %d\n", tri[3 * e], tri[3 * e + 1], tri[3 * e + 2]);
+    fprintf(f, "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    for (size_t e = 0; e < elements; e++) fprintf(f, "%zu\n", 3 * (e + 1));
+    fprintf(f, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for (size_t e = 0; e < elements; e++) fprintf(f, "5\n");
+    fprintf(f, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    if (fclose(f) != 0) {
+        fprintf(stderr, "loopsurf-mpi: error: rank %d: writing %s failed\n", rank_, path);
+        MPI_Abort(MPI_COMM_WORLD, 2);
+    }
+}
+
+static void write_master(const char* out) {
+    FILE* f = fopen(out, "w");
+    if (f == NULL) {
+        fprintf(stderr, "loopsurf-mpi: error: %s: %s\n", out, strerror(errno));
+        MPI_Abort(MPI_COMM_WORLD, 2);
+    }
+    fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+    fprintf(f, "<PUnstructuredGrid GhostLevel=\"0\">\n");
+    fprintf(f, "<PPointData GlobalIds=\"GlobalNodeId\">\n<PDataArray type=\"Int64\" Name=\"GlobalNodeId\"/>\n</PPointData>\n");
+    fprintf(f, "<PCellData>\n<PDataArray type=\"Int32\" Name=\"face\"/>\n</PCellData>\n");
+    fprintf(f, "<PPoints>\n<PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n</PPoints>\n");
+    for (int q = 0; q < ranks_; q++) {
+        char path[4096];
+        const char* base = NULL;
+        piece_name(out, q, path, sizeof path, &base);
+        fprintf(f, "<Piece Source=\"%s\"/>\n", base);
+    }
+    fprintf(f, "</PUnstructuredGrid>\n</VTKFile>\n");
+    fclose(f);
+}
+
+int main(int argc, char** argv) {
+    MPI_Init(&argc, &argv);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+    args a = parse(argc, argv);
+    double start = MPI_Wtime();
+
+    ls_net* net = NULL;
+    ls_surface* surface = NULL;
+    ls_remesh_job* job = NULL;
+    const unsigned repairs = LS_LOAD_TRIANGULATE | LS_LOAD_ORIENT | LS_LOAD_SPLIT_NONMANIFOLD | LS_LOAD_ALLOW_DEGENERATE;
+    int st = a.repair ? ls_net_load_with(a.input, repairs, 0, &net) : ls_net_load(a.input, &net);
+    if (st == LS_OK && a.has_hard_angle) st = ls_net_tag_by_angle(net, a.hard_angle, NULL);
+    if (st == LS_OK) st = ls_surface_build(net, &surface);
+    if (st == LS_OK) st = ls_remesh_job_new(surface, &a.remesh, rank_, ranks_, &job);
+    agree(st == LS_OK ? NULL : ls_last_error());
+
+    size_t* counts = malloc(sizeof *counts * (size_t)ranks_);
+    for (;;) {
+        int done = 0;
+        const char* stage = NULL;
+        check(ls_remesh_job_done(job, &done, &stage), "job");
+        if (done) break;
+        const uint8_t* mine = NULL;
+        size_t n = 0;
+        check(ls_remesh_job_run(job, &mine, &n), stage);
+        uint8_t* all = gather(mine, n, counts);
+        check(ls_remesh_job_advance(job, all, counts), stage);
+        free(all);
+    }
+    free(counts);
+
+    ls_trimesh* piece = NULL;
+    int64_t* ids = NULL;
+    check(ls_remesh_job_piece(job, &piece, &ids), "this rank's piece");
+    char path[4096];
+    const char* base = NULL;
+    piece_name(a.output, rank_, path, sizeof path, &base);
+    write_piece(path, piece, ids);
+    if (rank_ == 0) write_master(a.output);
+
+    size_t nodes = 0, elements = 0, per = 0;
+    check(ls_trimesh_counts(piece, &nodes, &elements, &per), "piece counts");
+    unsigned long long mine[2] = {elements, nodes}, sum[2] = {0, 0};
+    MPI_Reduce(mine, sum, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    double seconds = MPI_Wtime() - start;
+    if (rank_ == 0)
+        printf("%llu triangles in %zu parts on %d ranks, in %.3f s; wrote %s and %d pieces\n", sum[0],
+               a.remesh.parts, ranks_, seconds, a.output, ranks_);
+
+    ls_free_array(ids);
+    ls_trimesh_free(piece);
+    ls_remesh_job_free(job);
+    ls_surface_free(surface);
+    ls_net_free(net);
+    MPI_Finalize();
+    return 0;
+}
