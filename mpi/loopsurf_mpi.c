@@ -10,9 +10,12 @@
  * Usage: mpirun -np N loopsurf-mpi MESH [--hard-angle DEG] [--repair]
  *          [--size H] [--tolerance EPS] [--adapt curvature]
  *          [--gradation G] [--max-triangles N] [--parts K]
- *          [--threads T] -o OUT.pvtu
+ *          [--threads T] [--verbose] -o OUT.pvtu
  * The options mean what they mean to `loopsurf mesh`; K defaults to the
- * number of ranks (at least 2), T to the library's default. Bad
+ * number of ranks (at least 2), T to the library's default. --verbose
+ * prints, per stage, the slowest rank's time in its tasks, in the
+ * exchange and in advancing (every rank advances alike: joins, cuts and
+ * the start mesh are not shared out). Bad
  * arguments or input: one line on rank 0's stderr, exit status 2. */
 #include <loopsurf.h>
 #include <mpi.h>
@@ -28,7 +31,7 @@ typedef struct {
     const char* input;
     const char* output;
     double hard_angle;
-    int has_hard_angle, repair, adapt;
+    int has_hard_angle, repair, adapt, verbose;
     ls_remesh_options remesh;
     int has_size, has_tolerance;
 } args;
@@ -101,6 +104,9 @@ static args parse(int argc, char** argv) {
         if (strcmp(f, "--hard-angle") == 0) {
             a.hard_angle = number(f, v);
             a.has_hard_angle = 1;
+        } else if (strcmp(f, "--verbose") == 0) {
+            a.verbose = 1;
+            continue;
         } else if (strcmp(f, "--repair") == 0) {
             a.repair = 1;
             continue;
@@ -265,10 +271,22 @@ int main(int argc, char** argv) {
         if (done) break;
         const uint8_t* mine = NULL;
         size_t n = 0;
+        double t[4], slowest[3];
+        t[0] = MPI_Wtime();
         check(ls_remesh_job_run(job, &mine, &n), stage);
+        t[1] = MPI_Wtime();
         uint8_t* all = gather(mine, n, counts);
+        t[2] = MPI_Wtime();
         check(ls_remesh_job_advance(job, all, counts), stage);
+        t[3] = MPI_Wtime();
         free(all);
+        if (a.verbose) {
+            double spent[3] = {t[1] - t[0], t[2] - t[1], t[3] - t[2]};
+            MPI_Reduce(spent, slowest, 3, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+            if (rank_ == 0)
+                printf("%s: tasks %.3f s, exchange %.3f s, advance %.3f s\n", stage, slowest[0], slowest[1],
+                       slowest[2]);
+        }
     }
     free(counts);
 
