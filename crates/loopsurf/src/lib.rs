@@ -6,8 +6,9 @@
 //! reads and checks against every path in the sources.
 //! 1. Foundations, using nothing of the crate: [`error`], [`examples`]
 //!    (built-in nets as plain arrays), [`rules`] (every subdivision, limit
-//!    and tangent mask) and [`geometry`] (plain triangle measures and edge
-//!    swaps).
+//!    and tangent mask), [`geometry`] (plain triangle measures and edge
+//!    swaps) and the crate-private `sets` (disjoint sets, for fans,
+//!    sectors and blobs).
 //! 2. Files: [`io`] (formats, parse only) → [`repair`] (explicit fixes of
 //!    what was parsed, and the options to read a net with them).
 //! 3. The net: [`topology`] (connectivity only) → [`parameters`] (surface
@@ -67,6 +68,7 @@ pub mod refine;
 pub mod remesh;
 pub mod repair;
 pub mod rules;
+mod sets;
 pub mod snap;
 pub mod stream;
 pub mod surface;

@@ -5,6 +5,7 @@
 //! (CSR) arrays sized by the mesh itself.
 
 use crate::error::{Error, Result};
+use crate::sets::DisjointSets;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
@@ -641,25 +642,17 @@ fn sorted(a: u32, b: u32) -> [u32; 2] {
 
 /// Number of separate fans among a vertex's incident (next, prev, tri) triples.
 fn count_fans(around: &[(u32, u32, u32)]) -> usize {
-    // Union-find over triangles joined by a shared spoke (prev of one = next of other).
+    // Triangles joined by a shared spoke (prev of one = next of other).
     let n = around.len();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
+    let mut fans = DisjointSets::new(n);
     for i in 0..n {
         for j in 0..n {
             if around[i].1 == around[j].0 {
-                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
-                parent[a] = b;
+                fans.unite(i, j);
             }
         }
     }
-    (0..n).filter(|&i| root(&mut parent, i) == i).count()
+    (0..n).filter(|&i| fans.root(i) == i).count()
 }
 
 type EdgeArrays = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>);

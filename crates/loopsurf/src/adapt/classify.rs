@@ -46,6 +46,7 @@ use crate::error::{Error, Result};
 use crate::features::VertexKind;
 use crate::geometry::{angle, unit_normal};
 use crate::net::ControlNet;
+use crate::sets::DisjointSets;
 use crate::surface::Surface;
 use crate::topology::{Topology, NONE};
 use glam::DVec3;
@@ -191,7 +192,7 @@ fn widest_in_sectors(net: &ControlNet, v: usize, normals: &[DVec3]) -> f64 {
     let (topo, features) = (net.topology(), net.features());
     let fan = topo.fan(v);
     // Sector of each fan triangle: union over soft edges at v.
-    let mut sector: Vec<usize> = (0..fan.len()).collect();
+    let mut sector = DisjointSets::new(fan.len());
     for (i, &t) in fan.iter().enumerate() {
         for &e in &topo.triangle_edges()[t as usize] {
             let [a, b] = topo.edges()[e as usize];
@@ -204,8 +205,7 @@ fn widest_in_sectors(net: &ControlNet, v: usize, normals: &[DVec3]) -> f64 {
                 continue;
             }
             if let Some(j) = fan.iter().position(|&f| f == other) {
-                let (ri, rj) = (root(&mut sector, i), root(&mut sector, j));
-                sector[ri] = rj;
+                sector.unite(i, j);
             }
         }
     }
@@ -213,22 +213,12 @@ fn widest_in_sectors(net: &ControlNet, v: usize, normals: &[DVec3]) -> f64 {
     let mut cos: f64 = 1.0;
     for i in 0..fan.len() {
         for j in i + 1..fan.len() {
-            if root(&mut sector, i) == root(&mut sector, j) {
+            if sector.root(i) == sector.root(j) {
                 cos = cos.min(normals[fan[i] as usize].dot(normals[fan[j] as usize]));
             }
         }
     }
     cos.clamp(-1.0, 1.0).acos()
-}
-
-/// The root of i's set in the union-find array `s`, pointing i at it.
-fn root(s: &mut [usize], i: usize) -> usize {
-    let mut r = i;
-    while s[r] != r {
-        r = s[r];
-    }
-    s[i] = r;
-    r
 }
 
 /// How far every vertex's neighbourhood is from the limit surface, model

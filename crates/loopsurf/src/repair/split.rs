@@ -7,6 +7,7 @@
 
 use super::{edge_incidences, Repair};
 use crate::io::MeshData;
+use crate::sets::DisjointSets;
 
 /// Splits every non-manifold vertex of `mesh`, and says which.
 pub(super) fn split_nonmanifold(mesh: &mut MeshData) -> Option<Repair> {
@@ -14,14 +15,7 @@ pub(super) fn split_nonmanifold(mesh: &mut MeshData) -> Option<Repair> {
     // Union-find over triangle corners: corner 3t + k is vertex tris[t][k]
     // in triangle t. Two corners of one vertex join when their triangles
     // share an edge through that vertex.
-    let mut parent: Vec<usize> = (0..3 * mesh.tris.len()).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
+    let mut fans = DisjointSets::new(3 * mesh.tris.len());
     let corner = |t: u32, v: u32| {
         let tri = &mesh.tris[t as usize];
         3 * t as usize + tri.iter().position(|&i| i == i64::from(v)).unwrap_or(0)
@@ -31,11 +25,7 @@ pub(super) fn split_nonmanifold(mesh: &mut MeshData) -> Option<Repair> {
         let ((e0, t0), (e1, t1)) = (pair[0], pair[1]);
         if e0 == e1 {
             for v in e0 {
-                let (a, b) = (
-                    root(&mut parent, corner(t0, v)),
-                    root(&mut parent, corner(t1, v)),
-                );
-                parent[a] = b;
+                fans.unite(corner(t0, v), corner(t1, v));
             }
         }
     }
@@ -60,10 +50,8 @@ pub(super) fn split_nonmanifold(mesh: &mut MeshData) -> Option<Repair> {
     let mut splits = Vec::new();
     for v in 0..nverts {
         // The vertex's fans (union-find roots) in order of first corner.
-        let mut firsts: Vec<(usize, usize)> = corners[v]
-            .iter()
-            .map(|&c| (root(&mut parent, c), c))
-            .collect();
+        let mut firsts: Vec<(usize, usize)> =
+            corners[v].iter().map(|&c| (fans.root(c), c)).collect();
         firsts.sort_unstable();
         firsts.dedup_by_key(|f| f.0);
         if firsts.len() < 2 {
@@ -85,7 +73,7 @@ pub(super) fn split_nonmanifold(mesh: &mut MeshData) -> Option<Repair> {
             })
             .collect();
         for &c in &corners[v] {
-            let r = root(&mut parent, c);
+            let r = fans.root(c);
             if let Ok(k) = by_root.binary_search_by_key(&r, |x| x.0) {
                 let f = by_root[k].1;
                 if f > 0 {

@@ -3,6 +3,7 @@
 //! triangles, fans at a vertex and connected blobs.
 
 use crate::net::ControlNet;
+use crate::sets::DisjointSets;
 use crate::topology::NONE;
 use std::collections::HashMap;
 
@@ -85,7 +86,7 @@ pub(super) fn control_rings(
 /// one fan when a chain of triangles sharing edges at that vertex joins
 /// them.
 pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
-    let mut class: Vec<usize> = (0..3 * triangles.len()).collect();
+    let mut class = DisjointSets::new(3 * triangles.len());
     let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * triangles.len());
     for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
@@ -96,8 +97,8 @@ pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
                 // The neighbour across runs b → a: its corner at b, then a.
                 Some(other) => {
                     let (ob, oa) = (other, 3 * (other / 3) + (other % 3 + 1) % 3);
-                    unite(&mut class, ca, oa);
-                    unite(&mut class, cb, ob);
+                    class.unite(ca, oa);
+                    class.unite(cb, ob);
                 }
                 None => {
                     edges.insert((a, b), ca);
@@ -105,20 +106,20 @@ pub(super) fn fans(triangles: &[[u32; 3]]) -> Vec<usize> {
             }
         }
     }
-    (0..class.len()).map(|c| root(&mut class, c)).collect()
+    (0..3 * triangles.len()).map(|c| class.root(c)).collect()
 }
 
 /// The triangles with a vertex in `band`, each connected set of them (by
 /// band vertices) numbered: the number of each triangle ([`NONE`] outside
 /// the band, numbered in triangle order), and how many.
 pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) {
-    let mut class: Vec<usize> = (0..triangles.len()).collect();
+    let mut class = DisjointSets::new(triangles.len());
     let mut first = vec![usize::MAX; band.len()];
     for (t, tri) in triangles.iter().enumerate() {
         for &v in tri.iter().filter(|&&v| band[v as usize]) {
             match first[v as usize] {
                 usize::MAX => first[v as usize] = t,
-                u => unite(&mut class, u, t),
+                u => class.unite(u, t),
             }
         }
     }
@@ -127,7 +128,7 @@ pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) 
     let mut count = 0;
     for (t, tri) in triangles.iter().enumerate() {
         if tri.iter().any(|&v| band[v as usize]) {
-            let r = root(&mut class, t);
+            let r = class.root(t);
             if number[r] == NONE {
                 number[r] = count;
                 count += 1;
@@ -136,20 +137,4 @@ pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) 
         }
     }
     (owner, count as usize)
-}
-
-/// The root of c's set in the union-find array `class`, its path halved.
-fn root(class: &mut [usize], mut c: usize) -> usize {
-    while class[c] != c {
-        class[c] = class[class[c]];
-        c = class[c];
-    }
-    c
-}
-
-/// Joins the sets of a and b under the smaller root, so that roots (and
-/// what is numbered by them) do not depend on the order of the joins.
-fn unite(class: &mut [usize], a: usize, b: usize) {
-    let (ra, rb) = (root(class, a), root(class, b));
-    class[ra.max(rb)] = ra.min(rb);
 }
