@@ -8,8 +8,8 @@
 // achieves, so that it can only fall (before its last pass removed
 // crossings: joint 203, mech-holes-shark 549, anchor 58): anchor's surface
 // crosses itself at its high-valence fans (131 pairs in a chart mesh 8 to
-// the control edge); mech-holes-shark's net folds back at 4 edges, its
-// pairs at the fin.
+// the control edge). mech-holes-shark's net folds back at 4 edges; the 4
+// pairs at that fin went when the last pass learnt to flip edges.
 #include "mesh.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -56,8 +56,8 @@ int main(int argc, char** argv) {
         {"joint.off", 30, 0, 0},
         {"fandisk.off", 30, 0, 0},
         {"pig.off", -1, 0, 0},
-        {"mech-holes-shark.off", 40, 0, 4},
-        {"anchor.off", 30, 0, 13},
+        {"mech-holes-shark.off", 40, 0, 0},
+        {"anchor.off", 30, 0, 12},
         {"joint.off", 30, 0.01, 0},
         {"fandisk.off", 30, 0.005, 0},
         {"pig.off", -1, 0.005, 0},
