@@ -306,6 +306,7 @@ fn remesh(
         shrinking.shrink_where_missed(work, &errors, tol);
     }
     let untangled = work.untangle(tolerance);
+    let untangled = untangled.max(work.clear_slivers(tolerance));
     let deviation = deviation.map(|d| d.max(untangled));
     Ok((deviation, shrinking.factors().to_vec()))
 }
