@@ -280,7 +280,7 @@ impl Box3 {
         }
     }
 
-    fn overlaps(&self, other: &Box3) -> bool {
+    pub(crate) fn overlaps(&self, other: &Box3) -> bool {
         self.lo.cmple(other.hi).all() && other.lo.cmple(self.hi).all()
     }
 }

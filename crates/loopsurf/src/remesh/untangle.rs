@@ -62,6 +62,10 @@ const ROUNDS: usize = 100;
 /// of 1.1°, below CGAL's 4.3° there.)
 const LEAST_COSINE: f64 = 0.939_692_620_785_908_4;
 
+/// Changed triangles a query tests one by one before the box tree of a
+/// round is built anew.
+const REBUILD: usize = 512;
+
 /// cos 120°: slivers are cleared only by triangles that turn from their
 /// neighbours by at most this, or no more than before.
 const SHARPEST_FOLD: f64 = -0.5;
@@ -206,6 +210,9 @@ impl Remeshing<'_> {
     pub fn clear_slivers(&mut self, tolerance: Option<f64>) -> f64 {
         const BELOW: f64 = LEAST_COSINE;
         let mut worst: f64 = 0.0;
+        // After the first round, only where the last one changed something
+        // can a vertex that could not go before go now.
+        let mut dirty: Option<HashSet<u32>> = None;
         for _ in 0..ROUNDS {
             let mut candidates: Vec<u32> = Vec::new();
             for t in 0..self.mesh.num_half_edges() / 3 {
@@ -213,7 +220,7 @@ impl Remeshing<'_> {
                     continue;
                 }
                 let tri = self.mesh.corners(3 * t);
-                if self.worst_cosine(tri, None) <= BELOW {
+                if self.worst_cosine(tri, None) <= BELOW || !is_dirty(&dirty, tri) {
                     continue;
                 }
                 candidates.extend(tri);
@@ -224,6 +231,7 @@ impl Remeshing<'_> {
                 break;
             }
             let mut near = Near::boxes_of(self);
+            let mut touched: Vec<u32> = Vec::new();
             let mut removed = 0;
             for v in candidates {
                 if !self.mesh.is_vertex_alive(v) {
@@ -274,17 +282,33 @@ impl Remeshing<'_> {
                 }
                 if let Some((_, h, chord)) = best {
                     self.mesh.collapse(h, v);
-                    near.changed.extend(&old);
+                    near.note(self, old.iter().copied());
+                    touched.extend(&old);
                     worst = worst.max(chord);
                     removed += 1;
                 }
             }
             if removed == 0 {
-                removed = self.flip_slivers(&mut near, tolerance, BELOW);
+                removed = self.flip_slivers(&mut near, tolerance, BELOW, &dirty, &mut touched);
             }
             if removed == 0 {
-                break;
+                // Settled where things changed: once more everywhere, or done.
+                match dirty.take() {
+                    Some(_) => continue,
+                    None => break,
+                }
             }
+            // The vertices within two rings of a change.
+            let mut ring = Vec::new();
+            let mut near_change: HashSet<u32> = HashSet::new();
+            for &t in touched.iter().filter(|&&t| self.mesh.is_alive(3 * t)) {
+                for v in self.mesh.corners(3 * t) {
+                    self.mesh.neighbours(v, &mut ring);
+                    near_change.insert(v);
+                    near_change.extend(&ring);
+                }
+            }
+            dirty = Some(near_change);
         }
         worst
     }
@@ -293,7 +317,14 @@ impl Remeshing<'_> {
     /// cosine exceeds `below` where the two new triangles' worst angle is
     /// better, under a removal's conditions of chord and facing, crossing
     /// no more triangles than before. Returns how many.
-    fn flip_slivers(&mut self, near: &mut Near, tolerance: Option<f64>, below: f64) -> usize {
+    fn flip_slivers(
+        &mut self,
+        near: &mut Near,
+        tolerance: Option<f64>,
+        below: f64,
+        dirty: &Option<HashSet<u32>>,
+        touched: &mut Vec<u32>,
+    ) -> usize {
         let mut flipped = 0;
         for h in 0..self.mesh.num_half_edges() {
             let g = self.mesh.opposite(h);
@@ -301,6 +332,9 @@ impl Remeshing<'_> {
                 continue;
             }
             let [a, b, c] = self.mesh.corners(h);
+            if !is_dirty(dirty, [a, b, c]) {
+                continue;
+            }
             let d = self.mesh.origin(prev(g));
             let replaced = [[a, b, c], [b, a, d]];
             let was = self
@@ -322,7 +356,8 @@ impl Remeshing<'_> {
                 continue;
             }
             self.mesh.flip(h);
-            near.changed.extend([h / 3, g / 3]);
+            near.note(self, [h / 3, g / 3]);
+            touched.extend([h / 3, g / 3]);
             flipped += 1;
         }
         flipped
@@ -493,6 +528,14 @@ impl Remeshing<'_> {
     }
 }
 
+/// Whether triangle `tri` has a corner in `dirty`, or there is no such
+/// set yet (every triangle is).
+fn is_dirty(dirty: &Option<HashSet<u32>>, tri: [u32; 3]) -> bool {
+    dirty
+        .as_ref()
+        .is_none_or(|d| tri.iter().any(|v| d.contains(v)))
+}
+
 /// The mesh as a round found it: its live triangles (by slot), the tree
 /// of their boxes and the pairs that cross, to count the crossings of
 /// triangles that would replace some of them.
@@ -508,6 +551,7 @@ struct Near {
     /// Slots whose triangles changed since the tree was built, each
     /// tested as it is now (its old box may not hold it).
     changed: Vec<u32>,
+    changed_set: HashSet<u32>,
 }
 
 impl Near {
@@ -543,6 +587,21 @@ impl Near {
             pairs: Vec::new(),
             per_slot: HashMap::new(),
             changed: Vec::new(),
+            changed_set: HashSet::new(),
+        }
+    }
+
+    /// Notes that the triangles in `slots` changed; past [`REBUILD`] such,
+    /// the tree is built anew on the mesh as it is (each query tests every
+    /// changed triangle).
+    fn note(&mut self, work: &Remeshing, slots: impl IntoIterator<Item = u32>) {
+        for s in slots {
+            if self.changed_set.insert(s) {
+                self.changed.push(s);
+            }
+        }
+        if self.changed.len() > REBUILD {
+            *self = Near::boxes_of(work);
         }
     }
 
@@ -592,15 +651,15 @@ impl Near {
         let bounds = Box3::of(t.map(|v| self.points[v as usize]));
         self.tree.overlapping(&bounds, |i| {
             let slot = self.slots[i];
-            if !old.contains(&slot) && !self.changed.contains(&slot) {
+            if !old.contains(&slot) && !self.changed_set.contains(&slot) {
                 test(slot);
             }
         });
-        let mut changed = self.changed.clone();
-        changed.sort_unstable();
-        changed.dedup();
-        for slot in changed.into_iter().filter(|s| !old.contains(s)) {
-            test(slot);
+        for &slot in self.changed.iter().filter(|s| !old.contains(s)) {
+            let here = now(slot).map(|c| Box3::of(c.map(|v| self.points[v as usize])));
+            if here.is_some_and(|b| b.overlaps(&bounds)) {
+                test(slot);
+            }
         }
         count
     }
