@@ -969,7 +969,8 @@ int ls_remesh_job_new(const ls_surface *surface,
 
 // Writes 1 to `*done` when the mesh is made, else 0; and, if `stage` is
 // not NULL, the name of the current stage ("sizes", "first pass",
-// "interface band", "interface crossings", "done"), a static string.
+// "interface band", "interface crossings", "done", or "failed" once an
+// advance has failed), a static string.
 int ls_remesh_job_done(const ls_remesh_job *job, int *done, const char **stage);
 
 // Runs this rank's tasks of the current stage and writes their outcomes
@@ -984,7 +985,8 @@ int ls_remesh_job_run(ls_remesh_job *job, const uint8_t **bytes, size_t *n);
 // − 1, one after another in `all` (what `MPI_Allgatherv` gathers). This
 // rank's own stretch is skipped: it keeps its outcomes. Damaged bytes
 // are `LS_ERR_BAD_STREAM`, a task missing or sent twice
-// `LS_ERR_INVALID_ARGUMENT`; the job then stays where it was.
+// `LS_ERR_INVALID_ARGUMENT`; the job then stays where it was. An error
+// of the stage's own work (a join, a partition) leaves the job failed.
 int ls_remesh_job_advance(ls_remesh_job *job, const uint8_t *all, const size_t *counts);
 
 // The finished mesh, whole (every rank holds it), as `ls_remesh` hands

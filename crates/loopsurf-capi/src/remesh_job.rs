@@ -60,7 +60,8 @@ pub unsafe extern "C" fn ls_remesh_job_new(
 
 /// Writes 1 to `*done` when the mesh is made, else 0; and, if `stage` is
 /// not NULL, the name of the current stage ("sizes", "first pass",
-/// "interface band", "interface crossings", "done"), a static string.
+/// "interface band", "interface crossings", "done", or "failed" once an
+/// advance has failed), a static string.
 #[no_mangle]
 pub unsafe extern "C" fn ls_remesh_job_done(
     job: *const ls_remesh_job,
@@ -75,6 +76,7 @@ pub unsafe extern "C" fn ls_remesh_job_done(
             "first pass" => c"first pass",
             "interface band" => c"interface band",
             "interface crossings" => c"interface crossings",
+            "failed" => c"failed",
             _ => c"done",
         };
         *done = job.is_done() as c_int;
@@ -99,11 +101,20 @@ pub unsafe extern "C" fn ls_remesh_job_run(
     run("ls_remesh_job_run", || {
         let job = input_mut(job, "job")?;
         let outs = (output(bytes, "bytes")?, output(n, "n")?);
-        if job.job.is_done() {
-            return Err(Fail::new(
-                LS_ERR_INVALID_ARGUMENT,
-                "the job is done: no tasks left to run",
-            ));
+        match job.job.stage_name() {
+            "done" => {
+                return Err(Fail::new(
+                    LS_ERR_INVALID_ARGUMENT,
+                    "the job is done: no tasks left to run",
+                ))
+            }
+            "failed" => {
+                return Err(Fail::new(
+                    LS_ERR_INVALID_ARGUMENT,
+                    "the job failed at an earlier advance: start a new one",
+                ))
+            }
+            _ => {}
         }
         let tasks = job.job.assigned(job.rank, job.ranks);
         let outcomes = match &job.pool {
@@ -124,7 +135,8 @@ pub unsafe extern "C" fn ls_remesh_job_run(
 /// − 1, one after another in `all` (what `MPI_Allgatherv` gathers). This
 /// rank's own stretch is skipped: it keeps its outcomes. Damaged bytes
 /// are `LS_ERR_BAD_STREAM`, a task missing or sent twice
-/// `LS_ERR_INVALID_ARGUMENT`; the job then stays where it was.
+/// `LS_ERR_INVALID_ARGUMENT`; the job then stays where it was. An error
+/// of the stage's own work (a join, a partition) leaves the job failed.
 #[no_mangle]
 pub unsafe extern "C" fn ls_remesh_job_advance(
     job: *mut ls_remesh_job,
