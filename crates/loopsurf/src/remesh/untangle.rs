@@ -533,7 +533,7 @@ impl Remeshing<'_> {
 fn is_dirty(dirty: &Option<HashSet<u32>>, tri: [u32; 3]) -> bool {
     dirty
         .as_ref()
-        .is_none_or(|d| tri.iter().any(|v| d.contains(v)))
+        .map_or(true, |d| tri.iter().any(|v| d.contains(v)))
 }
 
 /// The mesh as a round found it: its live triangles (by slot), the tree
