@@ -11,7 +11,7 @@ use crate::remesh::{ls_remesh_options, pool, remesher, trimesh_of};
 use crate::status::{input, input_mut, output, read_options, run, run_void, Fail};
 use crate::status::{LS_ERR_BAD_STREAM, LS_ERR_INVALID_ARGUMENT};
 use crate::surface::ls_surface;
-use crate::trimesh::{c_ints, ls_trimesh};
+use crate::trimesh::ls_trimesh;
 use loopsurf::remesh::{outcomes_from_bytes, outcomes_to_bytes, TaskOutcome};
 use loopsurf::{Surface, SurfaceMesh};
 use std::ffi::{c_char, c_int};
@@ -257,28 +257,10 @@ pub unsafe extern "C" fn ls_remesh_job_piece(
         let handle = input(job, "job")?;
         let job = &handle.job;
         let outs = (output(piece, "piece")?, output(global_ids, "global_ids")?);
-        let made = finished(job.mesh(), job.stage_name())?;
-        let mine = job.rank_triangles(handle.rank, handle.ranks)?;
-        let mut local = vec![u32::MAX; made.points.len()];
-        let mut ids: Vec<i64> = Vec::new();
-        let triangles: Vec<[u32; 3]> = mine
-            .iter()
-            .map(|&t| {
-                made.triangles[t as usize].map(|v| {
-                    if local[v as usize] == u32::MAX {
-                        local[v as usize] = ids.len() as u32;
-                        ids.push(v as i64);
-                    }
-                    local[v as usize]
-                })
-            })
-            .collect();
-        let points: Vec<_> = ids.iter().map(|&v| made.points[v as usize]).collect();
-        let params: Vec<_> = ids.iter().map(|&v| made.params[v as usize]).collect();
-        let faces: Vec<u32> = mine.iter().map(|&t| made.faces[t as usize]).collect();
-        let mut result = ls_trimesh::straight(&points, &triangles, &params)?;
-        result.element_face = Some(c_ints(&faces));
-        result.deviation = made.deviation.map(|d| d / made.diagonal);
+        finished(job.mesh(), job.stage_name())?;
+        let (made, ids) = job.rank_piece(handle.rank, handle.ranks)?;
+        let result = trimesh_of(&made)?;
+        let ids: Vec<i64> = ids.into_iter().map(i64::from).collect();
         let ids = malloc_copy(&ids)?;
         *outs.1 = ids;
         result.hand_over(outs.0);

@@ -170,14 +170,7 @@ impl Remeshing<'_> {
                 continue;
             }
             let keep = self.mesh.dest(h);
-            // Each triangle around v that survives, with keep for v: the
-            // new triangle and the one it replaces.
-            let (new, replaced): (Vec<[u32; 3]>, Vec<[u32; 3]>) = outgoing
-                .iter()
-                .map(|&e| (self.mesh.dest(e), self.mesh.origin(prev(e))))
-                .filter(|&(y, z)| y != keep && z != keep)
-                .map(|(y, z)| ([keep, y, z], [v, y, z]))
-                .unzip();
+            let (new, replaced) = self.collapsed(v, &outgoing, keep);
             let Some(chord) = self.acceptable(&new, &replaced, keep, tolerance) else {
                 continue;
             };
@@ -251,12 +244,7 @@ impl Remeshing<'_> {
                         continue;
                     }
                     let keep = self.mesh.dest(h);
-                    let (new, replaced): (Vec<[u32; 3]>, Vec<[u32; 3]>) = outgoing
-                        .iter()
-                        .map(|&e| (self.mesh.dest(e), self.mesh.origin(prev(e))))
-                        .filter(|&(y, z)| y != keep && z != keep)
-                        .map(|(y, z)| ([keep, y, z], [v, y, z]))
-                        .unzip();
+                    let (new, replaced) = self.collapsed(v, &outgoing, keep);
                     // The cheap test first: the angles.
                     let quality = new
                         .iter()
@@ -457,6 +445,18 @@ impl Remeshing<'_> {
             }
         }
         flipped
+    }
+
+    /// Collapsing v (whose half-edges are `outgoing`) into `keep`: each
+    /// triangle around v that survives, with keep for v, and the triangle
+    /// it replaces.
+    fn collapsed(&self, v: u32, outgoing: &[u32], keep: u32) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+        outgoing
+            .iter()
+            .map(|&e| (self.mesh.dest(e), self.mesh.origin(prev(e))))
+            .filter(|&(y, z)| y != keep && z != keep)
+            .map(|(y, z)| ([keep, y, z], [v, y, z]))
+            .unzip()
     }
 
     /// Whether free vertex v sits on a fold of the surface: its normal and

@@ -13,7 +13,7 @@
 //! mesh is the threaded one, bit for bit, on any number of ranks.
 
 use super::cuts::{blobs, control_rings, majority, mesh_rings, shared_vertices};
-use super::join::{join, kept, Joined};
+use super::join::{join, kept, sub_mesh, Joined};
 use super::outcome::{Outcome, TaskOutcome};
 use super::work::{run_tasks, PartWork};
 use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS};
@@ -394,6 +394,17 @@ impl<'a> PartsJob<'a> {
                 self.stage_name()
             ))),
         }
+    }
+
+    /// Rank `rank`'s piece of the finished mesh ([`PartsJob::rank_triangles`])
+    /// as a mesh of its own, and each of its vertices' index in the whole
+    /// mesh: a vertex on the border between two pieces has one index.
+    pub fn rank_piece(&self, rank: usize, ranks: usize) -> Result<(SurfaceMesh, Vec<u32>)> {
+        let mine = self.rank_triangles(rank, ranks)?;
+        let mesh = self
+            .mesh()
+            .expect("rank_triangles checked that the job is done");
+        Ok(sub_mesh(mesh, mine.iter().map(|&t| t as usize)))
     }
 
     /// The triangles of the finished mesh that rank `rank` of `ranks`

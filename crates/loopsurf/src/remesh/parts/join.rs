@@ -26,30 +26,9 @@ pub(super) struct Joined {
 /// factors.
 pub(super) fn kept(pass: &Joined, owner: &[u32]) -> Piece {
     let mesh = &pass.mesh;
-    let mut local = vec![NONE; mesh.points.len()];
-    let mut pinned = Vec::new();
-    let mut triangles = Vec::new();
-    let mut faces = Vec::new();
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        if owner[t] != NONE {
-            continue;
-        }
-        triangles.push(tri.map(|v| {
-            if local[v as usize] == NONE {
-                local[v as usize] = pinned.len() as u32;
-                pinned.push(v);
-            }
-            local[v as usize]
-        }));
-        faces.push(mesh.faces[t]);
-    }
-    let piece = without_curves(
-        pinned.iter().map(|&v| mesh.points[v as usize]).collect(),
-        triangles,
-        pinned.iter().map(|&v| mesh.params[v as usize]).collect(),
-        faces,
-        mesh.deviation,
-        mesh.diagonal,
+    let (piece, pinned) = sub_mesh(
+        mesh,
+        (0..mesh.triangles.len()).filter(|&t| owner[t] == NONE),
     );
     Piece {
         mesh: piece,
@@ -60,6 +39,37 @@ pub(super) fn kept(pass: &Joined, owner: &[u32]) -> Piece {
             .map(|t| (t, pass.shrunk[t as usize]))
             .collect(),
     }
+}
+
+/// The triangles `tris` of `mesh` as a mesh of their own (no curves),
+/// and each of its vertices' index in `mesh`.
+pub(super) fn sub_mesh(
+    mesh: &SurfaceMesh,
+    tris: impl Iterator<Item = usize>,
+) -> (SurfaceMesh, Vec<u32>) {
+    let mut local = vec![NONE; mesh.points.len()];
+    let mut ids = Vec::new();
+    let mut triangles = Vec::new();
+    let mut faces = Vec::new();
+    for t in tris {
+        triangles.push(mesh.triangles[t].map(|v| {
+            if local[v as usize] == NONE {
+                local[v as usize] = ids.len() as u32;
+                ids.push(v);
+            }
+            local[v as usize]
+        }));
+        faces.push(mesh.faces[t]);
+    }
+    let sub = without_curves(
+        ids.iter().map(|&v| mesh.points[v as usize]).collect(),
+        triangles,
+        ids.iter().map(|&v| mesh.params[v as usize]).collect(),
+        faces,
+        mesh.deviation,
+        mesh.diagonal,
+    );
+    (sub, ids)
 }
 
 /// The pieces joined on their pinned vertices, in the whole's triangle
