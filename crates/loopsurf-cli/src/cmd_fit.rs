@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     #[command(flatten)]
     input: Input,
-    /// Control-edge length of the fitted net, model units (default 0.03 of
+    /// Control-edge length of the fitted net, model units (default 0.015 of
     /// the bounding-box diagonal).
     #[arg(long, value_name = "H", allow_negative_numbers = true)]
     resolution: Option<f64>,

@@ -1,8 +1,8 @@
 //! The fitted surrogate (`loopsurf::fit`) against the exact surfaces of
 //! the CAD shapes (`loopsurf::cad`), never against the fit's own report.
-//! Bounds are pinned as measured on 2026-12-01 (docs/fitting.md): a change
-//! that makes the fit worse fails here; one that makes it better tightens
-//! them.
+//! Bounds are pinned as measured (docs/fitting.md; the default resolution
+//! of 0.015 of the diagonal since 2026-12-02): a change that makes the fit
+//! worse fails here; one that makes it better tightens them.
 
 use loopsurf::cad::{self, Analytic};
 use loopsurf::{folds, Error, Fitter, Remesher, Surface};
@@ -31,14 +31,19 @@ fn sphere_is_closer_than_its_facets() {
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     assert!(d.max <= facets.max / 5.0, "{d:?} against {facets:?}");
     assert!(d.mean <= facets.mean / 10.0, "{d:?} against {facets:?}");
-    // Pinned as measured: 4.0e-5 / 3.9e-6.
-    assert!(d.max <= 4.2e-5 && d.mean <= 4.1e-6, "{d:?}");
+    // Pinned as measured: 8.6e-5 / 2.7e-6. (At the earlier default
+    // resolution, twice as coarse, 4.0e-5 / 3.9e-6: the finer default brings
+    // the five other shapes 2 to 5 times closer at their worst and costs
+    // the sphere this, still 5.8 times closer than its facets.)
+    assert!(d.max <= 9.0e-5 && d.mean <= 2.9e-6, "{d:?}");
     let k = cad::curvature_error(&shape, &surface, LATTICE, 0.1)
         .unwrap()
         .unwrap();
     assert!(k.mean <= 0.05, "{k:?}");
-    // Pinned as measured: 20.5% / 1.70%.
-    assert!(k.max <= 0.21 && k.mean <= 0.0175, "{k:?}");
+    // Pinned as measured: 62.0% / 2.74% (20.5% / 1.70% on the twice
+    // coarser net of the earlier default: a finer net fitted to the same
+    // data is less smooth in its second derivatives).
+    assert!(k.max <= 0.65 && k.mean <= 0.029, "{k:?}");
     assert!(folds::folded_patches(&surface).is_empty());
     let mesh = Remesher::new(&surface).tolerance(1e-4).run().unwrap();
     assert!(mesh.triangles.len() > 1000);
@@ -50,8 +55,7 @@ fn sphere_is_closer_than_its_facets() {
 /// of the fitted surface on its hard edges are on the true rims to within
 /// a fifth of the facets' rim polygon. The side, where the input has no
 /// vertex between the rims, is fitted to the curves predicted along its
-/// slivers: closer than the facets, at the worst and on average (the
-/// goal's 5× is missed, docs/fitting.md says where).
+/// slivers: 5× closer than the facets at the worst and 10× on average.
 #[test]
 fn cylinder_rims_on_the_true_edges() {
     let shape = cad::cylinder(CHORD, ANGLE, cad::CapStyle::Fan);
@@ -99,18 +103,19 @@ fn cylinder_rims_on_the_true_edges() {
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
     assert!(
-        d.max < facets.max && d.mean < facets.mean,
+        d.max <= facets.max / 5.0 && d.mean <= facets.mean / 10.0,
         "{d:?} against {facets:?}"
     );
-    // Pinned as measured: 1.8e-4 / 1.5e-5 (fitted to the vertices alone it
+    // Pinned as measured: 6.3e-5 / 3.6e-6 (fitted to the vertices alone it
     // was 1.1e-3 / 4.3e-4).
-    assert!(d.max <= 1.9e-4 && d.mean <= 1.6e-5, "{d:?}");
+    assert!(d.max <= 6.6e-5 && d.mean <= 3.8e-6, "{d:?}");
 }
 
 /// The cone's apex, a fan of slivers that no dihedral angle marks, is
 /// found and kept as a corner: the fitted surface reaches the true apex,
 /// and strays from the true cone less than when the apex is rounded off
-/// (5.5e-2 of the diagonal).
+/// (5.5e-2 of the diagonal): on average 5× closer than the facets, whose
+/// slivers lie on the cone's rulings; at the worst, beside the apex, not.
 #[test]
 fn cone_apex_is_kept() {
     let shape = cad::cone(CHORD, ANGLE);
@@ -131,9 +136,43 @@ fn cone_apex_is_kept() {
     );
     let surface = Surface::new(&fit.net).unwrap();
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
-    // Pinned as measured: 1.5e-3 / 6.6e-5 (3.8e-3 / 7.2e-5 while the start
-    // net closed the apex with three triangles).
-    assert!(d.max <= 1.6e-3 && d.mean <= 7.0e-5, "{d:?}");
+    let ex = shape.tessellation();
+    let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
+    assert!(d.mean <= facets.mean / 5.0, "{d:?} against {facets:?}");
+    // Pinned as measured: 9.4e-4 / 7.3e-6 (3.8e-3 / 7.2e-5 while the start
+    // net closed the apex with three triangles, 1.5e-3 / 6.6e-5 while the
+    // curves predicted along the rulings left the apex tilted).
+    assert!(d.max <= 1.0e-3 && d.mean <= 7.7e-6, "{d:?}");
+}
+
+/// Where fillets meet flat faces and on the torus, the fit is closer than
+/// the facets at the worst and 3× on average; the goal's 5× and 10× are
+/// missed (docs/fitting.md says where). Pinned as measured.
+#[test]
+fn blends_closer_than_facets() {
+    for (shape, max, mean) in [
+        (
+            Box::new(cad::torus(CHORD, ANGLE)) as Box<dyn Analytic>,
+            1.15e-4,
+            8.5e-6,
+        ),
+        (
+            Box::new(cad::FilletedBox::new(CHORD, ANGLE)),
+            1.9e-4,
+            3.8e-5,
+        ),
+        (Box::new(cad::cylinder_plate(CHORD, ANGLE)), 2.7e-4, 4.2e-5),
+    ] {
+        let ex = shape.tessellation();
+        let facets = cad::facet_distance(shape.as_ref(), &ex.points, &ex.tris, LATTICE);
+        let d = cad::surrogate_distance(shape.as_ref(), &fitted(shape.as_ref()), LATTICE).unwrap();
+        let name = shape.name();
+        assert!(
+            d.max < facets.max && d.mean <= facets.mean / 3.0,
+            "{name}: {d:?} against {facets:?}"
+        );
+        assert!(d.max <= max && d.mean <= mean, "{name}: {d:?}");
+    }
 }
 
 /// A tolerance that cannot be met is refused by name, with the input

@@ -15,8 +15,7 @@
 //!
 //! **Tangent planes.** The plane at a vertex is the least-squares plane
 //! through it that best fits its neighbours in the sector of the edge
-//! (the fan between two hard edges; the whole fan on a smooth vertex; the
-//! edge's two triangles at a corner, whose tangent cone is no plane). The
+//! (the fan between two hard edges; the whole fan on a smooth vertex). The
 //! fit weighs each neighbour by its distance, which is what a CAD
 //! tessellation needs where a flat face meets a fillet tangentially: the
 //! long edges on the flat face, exactly in its plane, decide the plane,
@@ -29,6 +28,17 @@
 //! exact on circular and straight rims; at a corner or a crease's end the
 //! chord's own direction. The same circle corrects the tangent planes
 //! beside a crease ([`plane_normal`]).
+//!
+//! **Corners** (an apex, where a fan of slivers meets, or where creases
+//! meet) have no tangent plane: an edge leaves a corner in the mean plane
+//! of its own two triangles, which holds the edge, so along a cone's
+//! rulings the prediction is the ruling itself. A least-squares plane of
+//! the neighbours there tilted each ruling by the rim's sagitta and bent
+//! it off the cone by half the chord tolerance.
+//!
+//! **Inside a triangle** larger than the net's spacing, the surface is
+//! predicted from the three edge curves by Nielson's side-vertex method
+//! ([`SideVertexPatch`]).
 
 use crate::features::VertexKind;
 use crate::net::ControlNet;
@@ -79,7 +89,7 @@ pub fn between_vertices(input: &ControlNet, spacing: f64) -> Samples {
         if n < 3 {
             continue;
         }
-        let patch = CubicPatch::new(input, &kinds, t);
+        let patch = SideVertexPatch::new(input, &kinds, t);
         for i in 1..n - 1 {
             for j in 1..n - i {
                 out.points
@@ -118,46 +128,93 @@ fn derivative(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> DVec3
     d - d.dot(n) * n
 }
 
-/// The cubic Bézier triangle of a control triangle whose boundary is the
-/// three edges' predicted curves and whose centre control point is that of
-/// Vlachos et al.'s PN triangles (quadratic precision).
-struct CubicPatch {
+/// The surface inside a control triangle predicted from its three edge
+/// curves, by Nielson's side-vertex method: from each corner a radial
+/// Hermite curve runs to the point of the opposite edge's curve, leaving
+/// the corner in the plane of its two edge curves and arriving in the
+/// tangent plane interpolated along that edge; the three radial curves are
+/// blended with weights that make each edge's own curve exact on it.
+///
+/// Why not the cubic Bézier triangle of the same edges (Vlachos et al.'s
+/// PN triangles): its centre control point has quadratic precision only,
+/// and a CAD sliver is anything but small: inside the fan of slivers at a
+/// cone's apex or a sphere's pole it strays by a fifth of the chord
+/// tolerance, more than the facets do on average. The radial curve from
+/// an apex is the ruling itself, exactly.
+struct SideVertexPatch {
     corners: [DVec3; 3],
-    /// `edge[i][0]` next to corner i, `edge[i][1]` next to corner i + 1.
-    edge: [[DVec3; 2]; 3],
-    centre: DVec3,
+    /// `derivative[i][0]` along the edge from corner i to i + 1,
+    /// `derivative[i][1]` along it from i + 1 to i (pointing back).
+    derivative: [[DVec3; 2]; 3],
+    /// The unit normal at each corner of the plane of its two edge
+    /// curves, none at a corner vertex (an apex has no tangent plane).
+    normal: [Option<DVec3>; 3],
 }
 
-impl CubicPatch {
-    fn new(input: &ControlNet, kinds: &[VertexKind], t: [u32; 3]) -> CubicPatch {
+impl SideVertexPatch {
+    fn new(input: &ControlNet, kinds: &[VertexKind], t: [u32; 3]) -> SideVertexPatch {
         let corners = t.map(|v| input.points()[v as usize]);
-        let edge = [0, 1, 2].map(|i| {
+        let derivative = [0, 1, 2].map(|i| {
             let (a, b) = (t[i], t[(i + 1) % 3]);
             [
-                corners[i] + derivative(input, kinds, a, b) / 3.0,
-                corners[(i + 1) % 3] + derivative(input, kinds, b, a) / 3.0,
+                derivative(input, kinds, a, b),
+                derivative(input, kinds, b, a),
             ]
         });
-        let e = edge.iter().flatten().copied().sum::<DVec3>() / 6.0;
-        let v = corners.iter().copied().sum::<DVec3>() / 3.0;
-        CubicPatch {
+        let normal = [0, 1, 2].map(|i| {
+            let out = derivative[i][0];
+            let back = derivative[(i + 2) % 3][1];
+            (kinds[t[i] as usize] != VertexKind::Corner)
+                .then(|| out.cross(back).try_normalize())
+                .flatten()
+        });
+        SideVertexPatch {
             corners,
-            edge,
-            centre: e + (e - v) / 2.0,
+            derivative,
+            normal,
         }
     }
 
-    /// The point at barycentric (1 − v − w, v, w).
+    /// The edge curve from corner i to corner i + 1 at parameter u, and its
+    /// interpolated unit normal there (none if neither end has one).
+    fn edge(&self, i: usize, u: f64) -> (DVec3, Option<DVec3>) {
+        let j = (i + 1) % 3;
+        let [da, db] = self.derivative[i];
+        let point = hermite(self.corners[i], da, self.corners[j], -db, u);
+        let normal = match (self.normal[i], self.normal[j]) {
+            (Some(a), Some(b)) => ((1.0 - u) * a + u * b).try_normalize(),
+            (Some(n), None) | (None, Some(n)) => Some(n),
+            (None, None) => None,
+        };
+        (point, normal)
+    }
+
+    /// The point at barycentric (1 − v − w, v, w), inside the triangle.
     fn at(&self, v: f64, w: f64) -> DVec3 {
         let b = [1.0 - v - w, v, w];
-        let mut p = self.centre * 6.0 * b[0] * b[1] * b[2];
+        let mut sum = DVec3::ZERO;
+        let mut total = 0.0;
         for i in 0..3 {
-            let j = (i + 1) % 3;
-            p += self.corners[i] * b[i].powi(3);
-            p += self.edge[i][0] * 3.0 * b[i] * b[i] * b[j];
-            p += self.edge[i][1] * 3.0 * b[i] * b[j] * b[j];
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            let weight = b[j] * b[k];
+            if weight <= 0.0 {
+                continue;
+            }
+            // The point of the opposite edge (j to k) seen from corner i.
+            let (q, nq) = self.edge(j, b[k] / (b[j] + b[k]));
+            let chord = q - self.corners[i];
+            let leave = match self.normal[i] {
+                Some(n) => chord - chord.dot(n) * n,
+                None => chord,
+            };
+            let arrive = match nq {
+                Some(n) => chord - chord.dot(n) * n,
+                None => chord,
+            };
+            sum += weight * hermite(self.corners[i], leave, q, arrive, 1.0 - b[i]);
+            total += weight;
         }
-        p
+        sum / total
     }
 }
 
@@ -217,8 +274,11 @@ fn plane_normal(
     b: u32,
 ) -> DVec3 {
     let points = input.points();
+    if kinds[a as usize] == VertexKind::Corner {
+        return edge_plane_normal(topo, points, a, b);
+    }
     let p = points[a as usize];
-    let offsets = sector(topo, input, kinds, a, b)
+    let offsets = sector(topo, input, a, b)
         .into_iter()
         .map(|n| points[n as usize] - p);
     match crease_circle(input, kinds, a) {
@@ -231,6 +291,26 @@ fn plane_normal(
         }
         None => least_squares_normal(offsets),
     }
+}
+
+/// The mean unit normal of the triangles beside edge (a, b). At a corner
+/// (an apex, where a fan of slivers meets) no plane fits the vertex's
+/// neighbours, but each triangle beside the edge holds the edge: the edge
+/// lies in their mean plane, so the predicted curve leaves the corner along
+/// the edge itself, which is exact on a cone's rulings.
+fn edge_plane_normal(topo: &Topology, points: &[DVec3], a: u32, b: u32) -> DVec3 {
+    let Some(e) = topo.find_edge(a, b) else {
+        return DVec3::ZERO;
+    };
+    topo.edge_triangles()[e]
+        .iter()
+        .filter(|&&t| t != crate::topology::NONE)
+        .map(|&t| {
+            let corners = topo.triangles()[t as usize].map(|v| points[v as usize]);
+            crate::geometry::area_normal(corners).normalize_or(DVec3::ZERO)
+        })
+        .sum::<DVec3>()
+        .normalize_or(DVec3::ZERO)
 }
 
 /// The unit normal of the plane through the origin nearest (least squares)
@@ -274,8 +354,8 @@ fn normal_about(axis: DVec3, offsets: impl Iterator<Item = DVec3>) -> DVec3 {
 
 /// The neighbours of `a` in the sector of the edge to `b`: from the ring
 /// position of `b` both ways up to the first hard edge (included) or the
-/// boundary; at a corner only the two triangles beside the edge.
-fn sector(topo: &Topology, input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> Vec<u32> {
+/// boundary.
+fn sector(topo: &Topology, input: &ControlNet, a: u32, b: u32) -> Vec<u32> {
     let ring = topo.ring(a as usize);
     let n = ring.len();
     let Some(j) = ring.iter().position(|&x| x == b) else {
@@ -290,13 +370,6 @@ fn sector(topo: &Topology, input: &ControlNet, kinds: &[VertexKind], a: u32, b: 
             (false, false) => i.checked_sub(1),
         }
     };
-    if kinds[a as usize] == VertexKind::Corner {
-        return [step(j, false), Some(j), step(j, true)]
-            .into_iter()
-            .flatten()
-            .map(|i| ring[i])
-            .collect();
-    }
     let is_hard = |i: usize| {
         topo.find_edge(a, ring[i])
             .is_some_and(|e| input.features().is_hard_edge(e))
