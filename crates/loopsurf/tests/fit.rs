@@ -139,10 +139,11 @@ fn cone_apex_is_kept() {
     let ex = shape.tessellation();
     let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
     assert!(d.mean <= facets.mean / 5.0, "{d:?} against {facets:?}");
-    // Pinned as measured: 9.4e-4 / 7.3e-6 (3.8e-3 / 7.2e-5 while the start
+    // Pinned as measured: 6.0e-4 / 7.8e-6 (3.8e-3 / 7.2e-5 while the start
     // net closed the apex with three triangles, 1.5e-3 / 6.6e-5 while the
-    // curves predicted along the rulings left the apex tilted).
-    assert!(d.max <= 1.0e-3 && d.mean <= 7.7e-6, "{d:?}");
+    // curves predicted along the rulings left the apex tilted, 9.4e-4 /
+    // 7.3e-6 with six triangles around the apex: sixteen cost the mean 7%).
+    assert!(d.max <= 6.3e-4 && d.mean <= 8.2e-6, "{d:?}");
 }
 
 /// Where fillets meet flat faces and on the torus, the fit is closer than
