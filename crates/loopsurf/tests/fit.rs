@@ -31,19 +31,16 @@ fn sphere_is_closer_than_its_facets() {
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     assert!(d.max <= facets.max / 5.0, "{d:?} against {facets:?}");
     assert!(d.mean <= facets.mean / 10.0, "{d:?} against {facets:?}");
-    // Pinned as measured: 8.6e-5 / 2.7e-6. (At the earlier default
-    // resolution, twice as coarse, 4.0e-5 / 3.9e-6: the finer default brings
-    // the five other shapes 2 to 5 times closer at their worst and costs
-    // the sphere this, still 5.8 times closer than its facets.)
-    assert!(d.max <= 9.0e-5 && d.mean <= 2.9e-6, "{d:?}");
+    // Pinned as measured: 3.5e-5 / 1.8e-6.
+    assert!(d.max <= 3.7e-5 && d.mean <= 1.9e-6, "{d:?}");
     let k = cad::curvature_error(&shape, &surface, LATTICE, 0.1)
         .unwrap()
         .unwrap();
     assert!(k.mean <= 0.05, "{k:?}");
-    // Pinned as measured: 62.0% / 2.74% (20.5% / 1.70% on the twice
+    // Pinned as measured: 63.5% / 2.37% (20.5% / 1.70% on the twice
     // coarser net of the earlier default: a finer net fitted to the same
     // data is less smooth in its second derivatives).
-    assert!(k.max <= 0.65 && k.mean <= 0.029, "{k:?}");
+    assert!(k.max <= 0.66 && k.mean <= 0.025, "{k:?}");
     assert!(folds::folded_patches(&surface).is_empty());
     let mesh = Remesher::new(&surface).tolerance(1e-4).run().unwrap();
     assert!(mesh.triangles.len() > 1000);
@@ -146,9 +143,9 @@ fn cone_apex_is_kept() {
     assert!(d.max <= 6.3e-4 && d.mean <= 8.2e-6, "{d:?}");
 }
 
-/// Where fillets meet flat faces and on the torus, the fit is closer than
-/// the facets at the worst and 3× on average; the goal's 5× and 10× are
-/// missed (docs/fitting.md says where). Pinned as measured.
+/// Where fillets meet flat faces and on the torus, the fit is 2× closer
+/// than the facets at the worst and 5× on average; the goal's 5× at the
+/// worst is missed (docs/fitting.md says where). Pinned as measured.
 #[test]
 fn blends_closer_than_facets() {
     for (shape, max, mean) in [
@@ -159,17 +156,17 @@ fn blends_closer_than_facets() {
         ),
         (
             Box::new(cad::FilletedBox::new(CHORD, ANGLE)),
-            1.9e-4,
-            3.8e-5,
+            1.6e-4,
+            2.4e-5,
         ),
-        (Box::new(cad::cylinder_plate(CHORD, ANGLE)), 2.7e-4, 4.2e-5),
+        (Box::new(cad::cylinder_plate(CHORD, ANGLE)), 2.1e-4, 1.4e-5),
     ] {
         let ex = shape.tessellation();
         let facets = cad::facet_distance(shape.as_ref(), &ex.points, &ex.tris, LATTICE);
         let d = cad::surrogate_distance(shape.as_ref(), &fitted(shape.as_ref()), LATTICE).unwrap();
         let name = shape.name();
         assert!(
-            d.max < facets.max && d.mean <= facets.mean / 3.0,
+            d.max <= facets.max / 2.0 && d.mean <= facets.mean / 5.0,
             "{name}: {d:?} against {facets:?}"
         );
         assert!(d.max <= max && d.mean <= mean, "{name}: {d:?}");

@@ -62,10 +62,11 @@ use std::time::Instant;
 /// seams where fillets meet flat faces (a surface as smooth as Loop's
 /// misses a jump in curvature by about the jump times the spacing
 /// squared) and the torus misses its data beside irregular control
-/// vertices; at 0.015 every shape is closer at its worst, the sphere
-/// excepted (4.0e-5 to 8.6e-5, still 5.8 times closer than its facets),
-/// for four times the control triangles; at 0.01 the box and the torus are
-/// closer still but a fit takes three times as long again.
+/// vertices; at 0.015 every shape was closer at its worst but the sphere
+/// (4.0e-5 to 8.6e-5, back to 3.5e-5 once the data between vertices were
+/// predicted along seams), for four times the control triangles; at 0.01
+/// the box and the torus are closer still but a fit takes three times as
+/// long again.
 pub const DEFAULT_RESOLUTION: f64 = 0.015;
 /// The default tolerance on the distance to every input vertex, relative
 /// to the diagonal: a fifth of a typical CAD chord tolerance (5e-4).

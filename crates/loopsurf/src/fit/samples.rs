@@ -27,7 +27,11 @@
 //! vertex is that of the circle through it and its two crease neighbours,
 //! exact on circular and straight rims; at a corner or a crease's end the
 //! chord's own direction. The same circle corrects the tangent planes
-//! beside a crease ([`plane_normal`]).
+//! beside a crease ([`plane_normal`]), and at a smooth vertex the circle
+//! through two of its neighbours opposite each other at about the same
+//! distance does the same ([`opposite_circle`]): on a tangent seam, where
+//! a cylinder or a flat face meets a fillet, that pair runs along the
+//! seam.
 //!
 //! **Corners** (an apex, where a fan of slivers meets, or where creases
 //! meet) have no tangent plane: an edge leaves a corner in the mean plane
@@ -234,17 +238,59 @@ fn crease_circle(input: &ControlNet, kinds: &[VertexKind], a: u32) -> Option<(DV
     };
     let points = input.points();
     let p = points[a as usize];
-    // Inverted about `a`, the circle through the three points is a line
-    // through the images of the other two: parallel to the tangent at `a`,
-    // at 1/(2R) from it towards the centre.
-    let (i0, i2) = [n0, n2]
-        .map(|n| {
-            let d = points[n as usize] - p;
-            d / d.length_squared()
-        })
-        .into();
+    circle_through(points[n0 as usize] - p, points[n2 as usize] - p)
+}
+
+/// The circle through a point and two others at offsets `d0` and `d2`
+/// from it: its unit tangent at the point (either way) and its curvature
+/// vector there. Inverted about the point, the circle is a line through
+/// the images of the other two: parallel to the tangent, at 1/(2R) from
+/// it towards the centre.
+fn circle_through(d0: DVec3, d2: DVec3) -> Option<(DVec3, DVec3)> {
+    let (i0, i2) = (d0 / d0.length_squared(), d2 / d2.length_squared());
     let t = (i2 - i0).try_normalize()?;
     Some((t, 2.0 * (i0 - i0.dot(t) * t)))
+}
+
+/// Neighbours as far apart as this (cosine of the angle between them) or
+/// farther count as opposite.
+const OPPOSITE: f64 = -0.94;
+/// The most one arm of an opposite pair may exceed the other.
+const BALANCED: f64 = 1.5;
+
+/// At a smooth vertex, the circle through it and the pair of its ring's
+/// neighbours most nearly opposite each other, when the pair is opposite
+/// and balanced ([`OPPOSITE`], [`BALANCED`]): a curve of the surface
+/// through the vertex, to second order, as a crease is. Where a cylinder
+/// meets a fillet, the seam's own circle is such a pair; its tangent is
+/// exact, and sweeping the other neighbours along it leaves the long
+/// rulings to decide the plane, which the fillet's short edges tilted by
+/// 0.3° in a plain least-squares plane, and bent every curve predicted
+/// from the seam to the rim by 1.8e-4 of the diagonal. An unbalanced pair
+/// (a long flat edge against a short one on a blend) would put the
+/// curvature jump between them into the tangent: none is taken.
+fn opposite_circle(topo: &Topology, points: &[DVec3], a: u32) -> Option<(DVec3, DVec3)> {
+    let p = points[a as usize];
+    let ring: Vec<DVec3> = topo
+        .ring(a as usize)
+        .iter()
+        .map(|&n| points[n as usize] - p)
+        .collect();
+    let mut best: Option<(f64, usize, usize)> = None;
+    for i in 0..ring.len() {
+        for j in i + 1..ring.len() {
+            let (li, lj) = (ring[i].length(), ring[j].length());
+            if li.max(lj) > BALANCED * li.min(lj) {
+                continue;
+            }
+            let cos = ring[i].dot(ring[j]) / (li * lj);
+            if cos <= OPPOSITE && best.map_or(true, |b| cos < b.0) {
+                best = Some((cos, i, j));
+            }
+        }
+    }
+    let (_, i, j) = best?;
+    circle_through(ring[i], ring[j])
 }
 
 /// The unit tangent at vertex `a` of the hard edge towards `b`, pointing
@@ -265,7 +311,10 @@ fn crease_tangent(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> D
 /// swept along it, to second order, so what is left of the neighbour's
 /// offset says how the plane turns about t, free of the crease's own
 /// curvature (which would tilt a plain least-squares plane by the rim's
-/// sagitta over the neighbour's distance).
+/// sagitta over the neighbour's distance). A smooth vertex with an
+/// opposite, balanced pair of neighbours is treated the same way along the
+/// circle through them ([`opposite_circle`]); any other, by the plain
+/// least-squares plane.
 fn plane_normal(
     topo: &Topology,
     input: &ControlNet,
@@ -281,7 +330,12 @@ fn plane_normal(
     let offsets = sector(topo, input, a, b)
         .into_iter()
         .map(|n| points[n as usize] - p);
-    match crease_circle(input, kinds, a) {
+    let circle = crease_circle(input, kinds, a).or_else(|| {
+        (kinds[a as usize] == VertexKind::Smooth)
+            .then(|| opposite_circle(topo, points, a))
+            .flatten()
+    });
+    match circle {
         Some((t, curvature)) => {
             let swept = offsets.map(|d| {
                 let s = d.dot(t);
