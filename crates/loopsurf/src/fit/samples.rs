@@ -38,7 +38,7 @@
 //! of its own two triangles, which holds the edge, so along a cone's
 //! rulings the prediction is the ruling itself. A least-squares plane of
 //! the neighbours there tilted each ruling by the rim's sagitta and bent
-//! it off the cone by half the chord tolerance.
+//! it off the cone by a third of the chord tolerance.
 //!
 //! **Inside a triangle** larger than the net's spacing, the surface is
 //! predicted from the three edge curves by Nielson's side-vertex method
@@ -142,8 +142,8 @@ fn derivative(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> DVec3
 /// Why not the cubic Bézier triangle of the same edges (Vlachos et al.'s
 /// PN triangles): its centre control point has quadratic precision only,
 /// and a CAD sliver is anything but small: inside the fan of slivers at a
-/// cone's apex or a sphere's pole it strays by a fifth of the chord
-/// tolerance, more than the facets do on average. The radial curve from
+/// cone's apex it strays by a fifth of the chord tolerance, more than the
+/// facets do on average. The radial curve from
 /// an apex is the ruling itself, exactly.
 struct SideVertexPatch {
     corners: [DVec3; 3],
