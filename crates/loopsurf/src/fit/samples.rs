@@ -128,8 +128,13 @@ fn derivative(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> DVec3
     if hard {
         return d.length() * crease_tangent(input, kinds, a, b);
     }
-    let n = plane_normal(topo, input, kinds, a, b);
-    d - d.dot(n) * n
+    in_plane(d, Some(plane_normal(topo, input, kinds, a, b)))
+}
+
+/// `v` projected onto the plane of unit normal `n`; `v` itself where there
+/// is no plane.
+fn in_plane(v: DVec3, n: Option<DVec3>) -> DVec3 {
+    n.map_or(v, |n| v - v.dot(n) * n)
 }
 
 /// The surface inside a control triangle predicted from its three edge
@@ -207,14 +212,7 @@ impl SideVertexPatch {
             // The point of the opposite edge (j to k) seen from corner i.
             let (q, nq) = self.edge(j, b[k] / (b[j] + b[k]));
             let chord = q - self.corners[i];
-            let leave = match self.normal[i] {
-                Some(n) => chord - chord.dot(n) * n,
-                None => chord,
-            };
-            let arrive = match nq {
-                Some(n) => chord - chord.dot(n) * n,
-                None => chord,
-            };
+            let (leave, arrive) = (in_plane(chord, self.normal[i]), in_plane(chord, nq));
             sum += weight * hermite(self.corners[i], leave, q, arrive, 1.0 - b[i]);
             total += weight;
         }
