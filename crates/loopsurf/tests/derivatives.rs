@@ -142,6 +142,13 @@ fn corners_creases_and_high_valence() {
 /// the tangent masks once gave normals 45° off (cross) or reversed (joint),
 /// which the normals inside kept at that angle. (0.05° is the round-off
 /// floor of normals 2^-60 from a corner.)
+///
+/// A sector whose two tangents inside are parallel to first order (the
+/// sine of their angle below 1e-6 at 2^-30: fandisk has one, triangle
+/// 186 at (1, 0)) has its normal from second order only, and the normals
+/// computed inside it are round-off by 2^-50 (0.3° there, none at 2^-60):
+/// those corners are counted, not compared, and at most one per mesh is
+/// allowed.
 #[test]
 fn normals_at_special_vertices_are_the_sector_limits() {
     for name in ["cross.off", "joint.off", "fandisk.off"] {
@@ -151,17 +158,25 @@ fn normals_at_special_vertices_are_the_sector_limits() {
         let mut net = ControlNet::read(path).unwrap();
         net.tag_by_angle(30.0).unwrap();
         let surface = Surface::new(&net).unwrap();
-        let mut checked = 0;
+        let (mut checked, mut singular) = (0, 0);
         for t in 0..net.triangles().len() {
             for (v, w) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
                 let Ok(n) = surface.normal(t, v, w) else {
                     continue;
                 };
-                let angle = |levels: i32| {
+                let at = |levels: i32| {
                     let h = 0.5f64.powi(levels);
-                    let inside = surface
-                        .normal(t, v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w))
-                        .unwrap();
+                    (v + h * (1.0 / 3.0 - v), w + h * (1.0 / 3.0 - w))
+                };
+                let (a, b) = at(30);
+                let e = surface.eval(t, a, b).unwrap();
+                if e.xv.cross(e.xw).length() < 1e-6 * e.xv.length() * e.xw.length() {
+                    singular += 1;
+                    continue;
+                }
+                let angle = |levels: i32| {
+                    let (a, b) = at(levels);
+                    let inside = surface.normal(t, a, b).unwrap();
                     n.angle_between(inside).to_degrees()
                 };
                 let (far, near) = (angle(30), angle(60));
@@ -173,5 +188,6 @@ fn normals_at_special_vertices_are_the_sector_limits() {
             }
         }
         assert!(checked > net.triangles().len(), "{name}: {checked}");
+        assert!(singular <= 1, "{name}: {singular} sectors without tangents");
     }
 }

@@ -186,8 +186,6 @@ impl SnapIndex {
         }
     }
 
-    /// Bytes held.
-
     /// The container of cell `c` of level `k`.
     pub(crate) fn cell(&self, k: u32, c: usize) -> &CellBound {
         &self.cells[self.level_start[k as usize] + c]
