@@ -24,6 +24,10 @@
 //! the nearest refined crease vertex, and the projection onto the crease
 //! polygon of the finest level around it (spacing h/2ᵏ, so its chord error
 //! is 1/4ᵏ of the crease's own).
+//!
+//! A row depends only on the net's connectivity, and most data keep their
+//! row vertex from one round to the next: rows are kept across rounds and
+//! only those of vertices met for the first time are built.
 
 use super::rows::{apply, Row, Rows};
 use super::samples::between_vertices;
@@ -34,6 +38,7 @@ use crate::snap;
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::collections::HashMap;
 
 /// The data of one fit.
 pub struct Data {
@@ -46,16 +51,20 @@ pub struct Data {
     pub on_feature: Vec<bool>,
     /// Each surface datum's footpoint (tri, v, w) on the current surface.
     footpoints: Vec<Option<(usize, f64, f64)>>,
+    /// The rows built so far, by finest vertex.
+    rows: HashMap<u32, Row>,
 }
 
 /// A datum located: its footpoint on the surface (none on a crease), the
-/// finest vertex of its row, and the row's target.
+/// finest vertex of its row, and the offset of its target from that
+/// vertex's limit position.
 type Located = (Option<(usize, f64, f64)>, u32, DVec3);
 
-/// One datum's row and target.
-pub struct Equation {
-    pub vertex: u32,
-    pub target: DVec3,
+/// Every datum's equation: the finest vertex whose row it takes
+/// ([`Data::row`]), and the row's target.
+pub struct Equations {
+    pub vertices: Vec<u32>,
+    pub targets: Vec<DVec3>,
 }
 
 impl Data {
@@ -80,52 +89,74 @@ impl Data {
             points,
             vertices: used,
             on_feature,
+            rows: HashMap::new(),
         }
     }
 
+    /// The row of finest vertex `r`, built by [`Data::equations`].
+    pub fn row(&self, r: u32) -> &Row {
+        &self.rows[&r]
+    }
+
     /// The equations of every datum on the surface of control points `x`
-    /// (its `surface` and the finest limit positions `fine` built from
-    /// them), updating the footpoints.
+    /// (`surface`, and `crease` at `x`), updating the footpoints.
     pub fn equations(
         &mut self,
         surface: &Surface,
         rows: &Rows,
         crease: &Crease,
         x: &[DVec3],
-    ) -> Result<Vec<Equation>> {
+    ) -> Result<Equations> {
         let located: Vec<Result<Located>> = self
             .points
             .par_iter()
             .zip(&self.on_feature)
             .zip(&self.footpoints)
-            .map_init(Vec::new, |scratch, ((&p, &feature), &foot)| {
+            .map(|((&p, &feature), &foot)| {
                 if feature && !crease.vertices.is_empty() {
-                    let (r, q) = crease.locate(p);
-                    return Ok((None, r, q));
+                    let (r, offset) = crease.locate(p);
+                    return Ok((None, r, offset));
                 }
                 let s = match foot {
                     None => snap::closest_point_within(surface, p, 1e-9)?,
                     Some((t, v, w)) => snap::project(surface, p, t, v, w)?,
                 };
                 let r = rows.nearest_vertex(s.tri, s.v, s.w);
-                let sr = apply(&rows.row(r, scratch), x);
-                Ok((Some((s.tri, s.v, s.w)), r, sr + (p - s.point)))
+                Ok((Some((s.tri, s.v, s.w)), r, p - s.point))
             })
             .collect();
-        let mut out = Vec::with_capacity(located.len());
+        let mut vertices = Vec::with_capacity(located.len());
+        let mut offsets = Vec::with_capacity(located.len());
         for (i, l) in located.into_iter().enumerate() {
-            let (foot, vertex, target) = l?;
+            let (foot, vertex, offset) = l?;
             self.footpoints[i] = foot;
-            out.push(Equation { vertex, target });
+            vertices.push(vertex);
+            offsets.push(offset);
         }
-        Ok(out)
+        let mut new: Vec<u32> = vertices
+            .iter()
+            .copied()
+            .filter(|r| !self.rows.contains_key(r))
+            .collect();
+        new.sort_unstable();
+        new.dedup();
+        let built = rows.rows(&new);
+        self.rows.extend(new.into_iter().zip(built));
+        let targets = vertices
+            .par_iter()
+            .zip(&offsets)
+            .map(|(r, &offset)| apply(&self.rows[r], x) + offset)
+            .collect();
+        Ok(Equations { vertices, targets })
     }
 }
 
-/// The crease polygon of the finest level: its vertices, their limit
-/// positions and their crease neighbours.
+/// The crease polygon of the finest level: its vertices, their rows, their
+/// limit positions for the current control points, and their crease
+/// neighbours.
 pub struct Crease {
     vertices: Vec<u32>,
+    rows: Vec<Row>,
     limits: Vec<DVec3>,
     /// Per crease vertex: the positions (in `vertices`) of its crease
     /// neighbours.
@@ -133,9 +164,9 @@ pub struct Crease {
 }
 
 impl Crease {
-    /// The finest crease and corner vertices of `rows` with their limit
-    /// positions for control points `x`.
-    pub fn new(rows: &Rows, x: &[DVec3]) -> Crease {
+    /// The finest crease and corner vertices of `rows` (their limit
+    /// positions set by [`Crease::at`]).
+    pub fn new(rows: &Rows) -> Crease {
         let fine = &rows.fine;
         let kinds = fine.vertex_kinds();
         let vertices: Vec<u32> = (0..kinds.len() as u32)
@@ -143,7 +174,7 @@ impl Crease {
             .collect();
         let index: std::collections::HashMap<u32, usize> =
             vertices.iter().enumerate().map(|(i, &v)| (v, i)).collect();
-        let limits = rows.rows(&vertices).iter().map(|r| apply(r, x)).collect();
+        let crease_rows = rows.rows(&vertices);
         let neighbours = vertices
             .iter()
             .map(|&v| {
@@ -156,13 +187,19 @@ impl Crease {
             .collect();
         Crease {
             vertices,
-            limits,
+            rows: crease_rows,
+            limits: Vec::new(),
             neighbours,
         }
     }
 
-    /// The finest crease vertex nearest `p` and the target of its row:
-    /// its limit position moved by the offset from the crease polygon to p.
+    /// Sets the limit positions for control points `x`.
+    pub fn at(&mut self, x: &[DVec3]) {
+        self.limits = self.rows.par_iter().map(|r| apply(r, x)).collect();
+    }
+
+    /// The finest crease vertex nearest `p` and the offset of its row's
+    /// target from its limit position: from the crease polygon to p.
     fn locate(&self, p: DVec3) -> (u32, DVec3) {
         let (i, _) = self
             .limits
@@ -181,19 +218,6 @@ impl Crease {
                 q = c;
             }
         }
-        (self.vertices[i], s + (p - q))
+        (self.vertices[i], p - q)
     }
-}
-
-/// Rows of the equations' vertices, computed once per distinct vertex.
-pub fn rows_of(rows: &Rows, equations: &[Equation]) -> (Vec<Row>, Vec<usize>) {
-    let mut distinct: Vec<u32> = equations.iter().map(|e| e.vertex).collect();
-    distinct.sort_unstable();
-    distinct.dedup();
-    let computed = rows.rows(&distinct);
-    let at = equations
-        .iter()
-        .map(|e| distinct.binary_search(&e.vertex).expect("listed"))
-        .collect();
-    (computed, at)
 }

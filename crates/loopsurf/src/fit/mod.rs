@@ -172,16 +172,15 @@ impl<'a> Fitter<'a> {
         let mut data = data::Data::new(&input, size);
         let mut x: Vec<DVec3> = net.points().to_vec();
         let weight = fairness_weight(data.points.len(), x.len(), size / diagonal);
+        let mut crease = data::Crease::new(&rows);
         for &lambda in &LAMBDA {
             let surface = Surface::new(&net.with_points(x.clone()))?;
-            let crease = data::Crease::new(&rows, &x);
+            crease.at(&x);
             let equations = data.equations(&surface, &rows, &crease, &x)?;
-            let (computed, at) = data::rows_of(&rows, &equations);
-            let refs: Vec<&rows::Row> = at.iter().map(|&i| &computed[i]).collect();
-            let targets: Vec<DVec3> = equations.iter().map(|e| e.target).collect();
+            let refs: Vec<&rows::Row> = equations.vertices.iter().map(|&r| data.row(r)).collect();
             x = solve::solve(
                 &refs,
-                &targets,
+                &equations.targets,
                 &fairness,
                 lambda * weight,
                 net.points(),

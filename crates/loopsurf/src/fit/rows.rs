@@ -65,8 +65,9 @@ impl Rows {
     }
 
     /// The row of finest vertex `r`'s limit position over the control
-    /// points of the base net. `scratch` is a dense accumulator as long as
-    /// the largest level, all zeros on entry and on exit.
+    /// points of the base net, in increasing order of control vertex.
+    /// `scratch` is a dense accumulator as long as the largest level, all
+    /// zeros on entry and on exit.
     pub fn row(&self, r: u32, scratch: &mut Vec<f64>) -> Row {
         let mut row = self.limit[r as usize].clone();
         for l in (0..self.steps.len()).rev() {
@@ -86,6 +87,7 @@ impl Rows {
                 .filter(|&(_, w)| w != 0.0)
                 .collect();
         }
+        row.sort_unstable_by_key(|&(i, _)| i);
         row
     }
 

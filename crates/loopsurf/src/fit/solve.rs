@@ -8,19 +8,22 @@
 //! positive definite and sparse (a row couples the two-ring of one control
 //! triangle), so faer's sparse Cholesky factors them once for the three
 //! coordinates; its fill-reducing ordering keeps the cost near linear in
-//! the net for surface meshes.
+//! the net for surface meshes. The rows come sorted by control vertex, so
+//! A is laid out row by row as it stands and every sum is a merge of
+//! sorted columns: nothing is sorted here.
 
 use super::rows::Row;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SparseRowMat, SymbolicSparseColMat, SymbolicSparseRowMat};
 use glam::DVec3;
 
 /// The proximal weight, per control point, relative to one data row.
 pub const PROXIMAL: f64 = 1e-13;
 
 /// Solves for the control points; `current` gives their number and the
-/// proximal anchor; the fairness term measures x − `reference`.
+/// proximal anchor; the fairness term measures x − `reference`. Each row
+/// lists its control vertices in increasing order, each once.
 pub fn solve(
     rows: &[&Row],
     targets: &[DVec3],
@@ -30,46 +33,48 @@ pub fn solve(
     current: &[DVec3],
 ) -> Result<Vec<DVec3>> {
     let (m, n) = (rows.len(), current.len());
-    let mut a = Vec::new();
-    let mut at = Vec::new();
-    for (i, row) in rows.iter().enumerate() {
+    let mut row_ptr = Vec::with_capacity(m + 1);
+    let mut col_idx = Vec::new();
+    let mut val = Vec::new();
+    row_ptr.push(0);
+    for row in rows {
         for &(j, w) in row.iter() {
-            a.push(Triplet::new(i, j as usize, w));
-            at.push(Triplet::new(j as usize, i, w));
+            col_idx.push(j as usize);
+            val.push(w);
         }
+        row_ptr.push(col_idx.len());
     }
-    let build = |r, c, t: &[Triplet<usize, usize, f64>]| {
-        SparseColMat::<usize, f64>::try_new_from_triplets(r, c, t)
-            .map_err(|e| Error::InvalidArgument(format!("fit: data rows: {e:?}")))
-    };
-    let (a, at) = (build(m, n, &a)?, build(n, m, &at)?);
+    let a = SparseRowMat::new(
+        SymbolicSparseRowMat::new_checked(m, n, row_ptr, None, col_idx),
+        val,
+    );
+    let a_by_columns = a
+        .as_ref()
+        .to_col_major()
+        .map_err(|e| failed("data rows", e))?;
     let ata = faer::sparse::linalg::matmul::sparse_sparse_matmul(
-        at.as_ref(),
-        a.as_ref(),
+        a.as_ref().transpose(),
+        a_by_columns.as_ref(),
         1.0,
         faer::Par::Seq,
     )
-    .map_err(|e| Error::InvalidArgument(format!("fit: normal equations: {e:?}")))?;
-    let mut triplets = Vec::with_capacity(ata.compute_nnz() + fairness.compute_nnz() + n);
-    let mut push = |mat: &SparseColMat<usize, f64>, scale: f64| {
-        for j in 0..mat.ncols() {
-            let range = mat.col_range(j);
-            let rows = &mat.row_idx()[range.clone()];
-            let vals = &mat.val()[range];
-            for (&i, &v) in rows.iter().zip(vals) {
-                triplets.push(Triplet::new(i, j, scale * v));
-            }
-        }
+    .map_err(|e| failed("normal equations", e))?;
+    let sum = |x: Option<&f64>, y: Option<&f64>, scale: f64| {
+        x.copied().unwrap_or(0.0) + scale * y.copied().unwrap_or(0.0)
     };
-    push(&ata, 1.0);
-    push(fairness, lambda);
-    triplets.extend((0..n).map(|i| Triplet::new(i, i, PROXIMAL)));
-    let normal = build(n, n, &triplets)?;
-    let llt = normal.sp_cholesky(faer::Side::Lower).map_err(|e| {
-        Error::InvalidArgument(format!(
-            "fit: the normal equations are not definite ({e:?})"
-        ))
-    })?;
+    let proximal = SparseColMat::new(
+        SymbolicSparseColMat::new_checked(n, n, (0..=n).collect(), None, (0..n).collect()),
+        vec![PROXIMAL; n],
+    );
+    let normal =
+        faer::sparse::ops::binary_op(ata.as_ref(), fairness.as_ref(), |x, y| sum(x, y, lambda))
+            .and_then(|m| {
+                faer::sparse::ops::binary_op(m.as_ref(), proximal.as_ref(), |x, y| sum(x, y, 1.0))
+            })
+            .map_err(|e| failed("normal equations", e))?;
+    let llt = normal
+        .sp_cholesky(faer::Side::Lower)
+        .map_err(|e| failed("the normal equations are not definite", e))?;
     let mut rhs = faer::Mat::<f64>::from_fn(n, 3, |i, k| PROXIMAL * current[i][k]);
     for (row, t) in rows.iter().zip(targets) {
         for &(j, w) in row.iter() {
@@ -99,4 +104,9 @@ pub fn solve(
         ));
     }
     Ok(x)
+}
+
+/// A solve that could not be set up or factored, and why.
+fn failed(what: &str, e: impl std::fmt::Debug) -> Error {
+    Error::InvalidArgument(format!("fit: {what} ({e:?})"))
 }
