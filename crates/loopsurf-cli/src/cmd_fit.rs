@@ -57,7 +57,10 @@ pub fn report_lines(fit: &Fit) -> Vec<String> {
             "fitted net: {} control points, {} triangles, smallest angle {:.1}°; {} rounds in {:.2} s",
             r.control_vertices, r.control_triangles, r.min_angle, r.rounds, r.seconds
         ),
-        format!("apexes found and kept as corners: {}", r.apexes),
+        format!(
+            "kept as corners: {} apexes, {} crease kinks",
+            r.apexes, r.kinks
+        ),
         format!(
             "distance to the input vertices: max {:.2e} (vertex {}), mean {:.2e} of the diagonal",
             r.vertices.max, r.vertices.worst, r.vertices.mean

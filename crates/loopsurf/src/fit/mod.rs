@@ -9,8 +9,9 @@
 //! & Kobbelt (optimization methods for scattered data approximation with
 //! subdivision surfaces, 2005):
 //!
-//! 1. [`apex`]: cone apexes, which no dihedral angle marks, are tagged
-//!    as corners. [`start`]: the control net is the input's approximating
+//! 1. [`apex`]: cone apexes, which no dihedral angle marks, and [`kink`]:
+//!    crease vertices where the crease turns sharply, are tagged as
+//!    corners. [`start`]: the control net is the input's approximating
 //!    surface remeshed by [`crate::Remesher`] at the chosen size, its
 //!    crease chains and corners tagged, so the new creases lie on the
 //!    input's feature lines.
@@ -41,6 +42,7 @@
 mod apex;
 mod data;
 mod fairness;
+mod kink;
 mod report;
 mod rows;
 mod samples;
@@ -48,6 +50,7 @@ mod solve;
 mod start;
 
 pub use apex::{apexes, APEX_ANGLE_DEGREES};
+pub use kink::{kinks, KINK_ANGLE_DEGREES};
 pub use report::{Distances, FitReport};
 
 use crate::error::{Error, Result};
@@ -150,7 +153,8 @@ impl<'a> Fitter<'a> {
             input.tag_by_angle(a)?;
         }
         let apexes = apex::apexes(&input);
-        for &v in &apexes {
+        let kinks = kink::kinks(&input);
+        for &v in apexes.iter().chain(&kinks) {
             input.tag_vertex(v)?;
         }
         let diagonal = input.bbox_diagonal();
@@ -210,6 +214,7 @@ impl<'a> Fitter<'a> {
             mean_curvature,
             min_angle,
             apexes: apexes.len(),
+            kinks: kinks.len(),
             control_vertices: net.points().len(),
             control_triangles: net.triangles().len(),
             rounds: LAMBDA.len(),

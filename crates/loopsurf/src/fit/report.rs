@@ -41,6 +41,9 @@ pub struct FitReport {
     /// Input vertices found to be apexes ([`super::apexes`]) and kept as
     /// corners.
     pub apexes: usize,
+    /// Crease vertices found to be kinks ([`super::kinks`]) and kept as
+    /// corners.
+    pub kinks: usize,
     /// Control vertices and triangles of the fitted net.
     pub control_vertices: usize,
     pub control_triangles: usize,
