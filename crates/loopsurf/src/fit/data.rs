@@ -172,7 +172,7 @@ impl Crease {
         let vertices: Vec<u32> = (0..kinds.len() as u32)
             .filter(|&v| matches!(kinds[v as usize], VertexKind::Crease | VertexKind::Corner))
             .collect();
-        let index: std::collections::HashMap<u32, usize> =
+        let index: HashMap<u32, usize> =
             vertices.iter().enumerate().map(|(i, &v)| (v, i)).collect();
         let crease_rows = rows.rows(&vertices);
         let neighbours = vertices
