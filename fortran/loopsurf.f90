@@ -108,6 +108,15 @@ module loopsurf
         real(c_double) :: max_move
     end type
 
+    !> Options of ls_trimesh_write: binary files, a piece's global node ids
+    !> (0-based, c_loc of an int64 array, or c_null_ptr) and first element tag.
+    type, bind(C) :: ls_trimesh_write_options
+        integer(c_size_t) :: struct_size
+        integer(c_int) :: binary
+        type(c_ptr) :: global_ids
+        integer(c_int64_t) :: first_element_tag
+    end type
+
     interface
         integer(c_int) function ls_net_load(path, out) bind(C, name="ls_net_load")
             import :: c_int, c_char, c_ptr
@@ -565,6 +574,19 @@ module loopsurf
             import :: c_int, c_double, c_ptr
             type(c_ptr), value :: mesh
             real(c_double), intent(out) :: min_scaled_jacobian
+        end function
+        integer(c_int) function ls_trimesh_write_options_default(options) &
+                bind(C, name="ls_trimesh_write_options_default")
+            import :: c_int, ls_trimesh_write_options
+            type(ls_trimesh_write_options), intent(out) :: options
+        end function
+        ! Writes a mesh handle on the surface to .msh or .vtu; see
+        ! loopsurf_trimesh_write for a Fortran string path.
+        integer(c_int) function ls_trimesh_write(mesh, surface, path, options) bind(C, name="ls_trimesh_write")
+            import :: c_int, c_char, c_ptr, ls_trimesh_write_options
+            type(c_ptr), value :: mesh, surface
+            character(kind=c_char), intent(in) :: path(*)
+            type(ls_trimesh_write_options), intent(in) :: options
         end function
         subroutine ls_trimesh_free(mesh) bind(C, name="ls_trimesh_free")
             import :: c_ptr
@@ -1185,6 +1207,16 @@ contains
         do i = 1, n
             s(i:i) = chars(i)
         end do
+    end function
+
+    !> Writes a mesh handle (from ls_remesh, ls_mesh, ls_mesh_curve or a
+    !> job's piece), which lies on `surface`, to `path`: gmsh .msh 4.1 or
+    !> VTK .vtu, by the extension.
+    integer function loopsurf_trimesh_write(mesh, surface, path, options) result(status)
+        type(c_ptr), intent(in) :: mesh, surface
+        character(len=*), intent(in) :: path
+        type(ls_trimesh_write_options), intent(in) :: options
+        status = ls_trimesh_write(mesh, surface, c_string(path), options)
     end function
 
     function c_string(s) result(c)

@@ -308,6 +308,29 @@ program test_loopsurf
         ro%size = 1d-4
         call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_ERR_OVER_BUDGET, &
             "remesh: over the budget")
+        ! A remeshed mesh handle to a file, and a file name it refuses.
+        block
+            type(c_ptr) :: handle
+            type(ls_trimesh_write_options) :: wo
+            logical :: exists
+            integer :: unit
+            ro%size = 0.3d0
+            call check(ls_remesh(surf, ro, handle) == LS_OK, "remesh handle")
+            call check(ls_trimesh_write_options_default(wo) == LS_OK, "write options")
+            call check(wo%struct_size == c_sizeof(wo) .and. wo%first_element_tag == 1_c_int64_t, &
+                "write options: defaults")
+            wo%binary = 1
+            call check(loopsurf_trimesh_write(handle, surf, "fortran_test.msh", wo) == LS_OK, "write .msh")
+            inquire(file="fortran_test.msh", exist=exists)
+            call check(exists, "write .msh: the file")
+            if (exists) then
+                open(newunit=unit, file="fortran_test.msh")
+                close(unit, status="delete")
+            end if
+            call check(loopsurf_trimesh_write(handle, surf, "fortran_test.obj", wo) == LS_ERR_UNSUPPORTED, &
+                "write .obj: refused")
+            call ls_trimesh_free(handle)
+        end block
         ! The remeshed mesh curved to P2: its vertices first and unmoved,
         ! every node on the surface at its 1-based parameters.
         block

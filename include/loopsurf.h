@@ -789,7 +789,8 @@ int ls_adapt(const ls_surface *surface, const ls_adapt_options *options, ls_trim
  *
  * Meshes on the surface (ls_trimesh): the chart mesher, the quality
  * remesher (whole, or in parts shared out among the ranks of a caller's
- * MPI job), curving another tool's mesh, and the model labels of any mesh.
+ * MPI job), curving another tool's mesh, the model labels of any mesh, and
+ * writing a mesh (or a rank's piece of one) to .msh or .vtu.
  * ========================================================================== */
 
 // Options of `ls_mesh`: fill with `ls_mesh_options_default`, then change
@@ -866,6 +867,28 @@ typedef struct {
   // Default 0.01.
   double max_move;
 } ls_mesh_curve_options;
+
+// Options of `ls_trimesh_write`: fill with
+// `ls_trimesh_write_options_default`, then change what you need.
+typedef struct {
+  // `sizeof(ls_trimesh_write_options)` as the caller was compiled with.
+  size_t struct_size;
+  // Nonzero: `.msh` in gmsh's binary format, `.vtu` with inline binary
+  // (base64) arrays (on a 6k-triangle mesh, 0.86× and 0.62× the ASCII
+  // sizes). Default 0 (ASCII).
+  int binary;
+  // NULL (the default), or one id per node of the mesh, each at least 0
+  // and all distinct: the node's id in a whole mesh this mesh is a piece
+  // of (`ls_remesh_job_piece` gives them). `.msh` tags node i with
+  // `global_ids[i] + 1`; `.vtu` adds the point array `GlobalNodeId`
+  // (Int64). Pieces merged on them share the nodes on their borders.
+  const int64_t *global_ids;
+  // `.msh` only: the tag of the first element, the others following one
+  // by one (corner points, then lines, then triangles). Pieces written
+  // with ranges that do not overlap keep every element when merged;
+  // a piece has at most nnodes + 4 × nelements elements. Default 1.
+  int64_t first_element_tag;
+} ls_trimesh_write_options;
 
 // Writes the sizes of the mesh: `nnodes` nodes, `nelements` elements,
 // `nodes_per_element` nodes each (3, 6, 10 or 15).
@@ -1071,6 +1094,26 @@ int ls_mesh_hard_edges(const ls_surface *surface,
                        int32_t **pairs,
                        int32_t **curves,
                        double **curve_t);
+
+// Writes the default options of `ls_trimesh_write` into `options`.
+int ls_trimesh_write_options_default(ls_trimesh_write_options *options);
+
+// Writes `mesh`, which lies on `surface`, to `path`: gmsh MSH 4.1 for
+// `.msh`, VTK XML for `.vtu`, as `loopsurf mesh` writes them. Both carry
+// each triangle's model face, the hard edges as lines with their model
+// curve, the model corners, and each node's (triangle, v, w); curved
+// meshes go out as Lagrange elements. The mesh needs element faces
+// (every meshing call's mesh but `ls_adapt`'s has them). `options` may
+// be NULL for the defaults.
+//
+// Errors say what is wrong: another extension, a mesh without faces,
+// node parameters outside this surface, repeated or negative global ids,
+// or the file (LS_ERR_IO, naming it). A file that fails partway may be
+// left incomplete.
+int ls_trimesh_write(const ls_trimesh *mesh,
+                     const ls_surface *surface,
+                     const char *path,
+                     const ls_trimesh_write_options *options);
 
 /* ==========================================================================
  * Streams

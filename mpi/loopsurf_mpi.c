@@ -2,17 +2,22 @@
  * runs it with the same arguments; each reads the control net, the ranks
  * share out the remeshing in parts (ls_remesh_job: each stage, every rank
  * meshes its share of the parts and MPI_Allgatherv hands the pieces to
- * all), and each writes its piece of the mesh as a .vtu with the global
- * node ids, rank 0 the .pvtu that names them. The pieces merged on their
- * global ids are the mesh `loopsurf mesh --parts K` makes, bit for bit,
- * on any number of ranks.
+ * all), and each writes its piece of the mesh with the global node ids
+ * (ls_trimesh_write): for -o OUT.pvtu, rank q writes OUT_q.vtu and rank 0
+ * the .pvtu that names them; for -o OUT.msh, rank q writes OUT_q.msh
+ * (gmsh 4.1), its nodes tagged global id + 1 and its elements tagged from
+ * an offset of its own, so that gmsh merging the files shares the border
+ * nodes and keeps every element. The pieces merged on their global ids
+ * are the mesh `loopsurf mesh --parts K` makes, bit for bit, on any
+ * number of ranks.
  *
  * Usage: mpirun -np N loopsurf-mpi MESH [--hard-angle DEG] [--repair]
  *          [--size H] [--tolerance EPS] [--adapt curvature]
  *          [--gradation G] [--max-triangles N] [--parts K]
- *          [--threads T] [--verbose] -o OUT.pvtu
+ *          [--threads T] [--binary] [--verbose] -o OUT.pvtu|OUT.msh
  * The options mean what they mean to `loopsurf mesh`; K defaults to the
- * number of ranks (at least 2), T to the library's default. --verbose
+ * number of ranks (at least 2), T to the library's default. --binary
+ * writes binary .msh, or .vtu pieces with base64 arrays. --verbose
  * prints, per stage, the slowest rank's time in its tasks, in the
  * exchange and in advancing (every rank advances alike: joins, cuts and
  * the start mesh are not shared out). Bad
@@ -31,7 +36,7 @@ typedef struct {
     const char* input;
     const char* output;
     double hard_angle;
-    int has_hard_angle, repair, adapt, verbose;
+    int has_hard_angle, repair, adapt, verbose, binary, msh;
     ls_remesh_options remesh;
     int has_size, has_tolerance;
 } args;
@@ -110,6 +115,9 @@ static args parse(int argc, char** argv) {
         } else if (strcmp(f, "--repair") == 0) {
             a.repair = 1;
             continue;
+        } else if (strcmp(f, "--binary") == 0) {
+            a.binary = 1;
+            continue;
         } else if (strcmp(f, "--size") == 0) {
             a.remesh.size = number(f, v);
             a.has_size = 1;
@@ -141,10 +149,13 @@ static args parse(int argc, char** argv) {
         i++;
     }
     if (a.input == NULL) refuse("no input mesh given%s%s", "", "");
-    if (a.output == NULL) refuse("no output given (-o OUT.pvtu)%s%s", "", "");
+    if (a.output == NULL) refuse("no output given (-o OUT.pvtu or OUT.msh)%s%s", "", "");
     size_t n = strlen(a.output);
-    if (n < 5 || strcmp(a.output + n - 5, ".pvtu") != 0)
-        refuse("-o %s: the output is a .pvtu (one .vtu piece per rank beside it)%s", a.output, "");
+    a.msh = n >= 4 && strcmp(a.output + n - 4, ".msh") == 0;
+    if (!a.msh && (n < 5 || strcmp(a.output + n - 5, ".pvtu") != 0))
+        refuse("-o %s: the output is a .pvtu (one .vtu piece per rank beside it) or a .msh (one "
+               "OUT_rank.msh per rank)%s",
+               a.output, "");
     /* As `loopsurf mesh`: with neither a size nor a tolerance, the
      * curvature-adaptive mesh at the default tolerance. */
     int adapt = a.adapt || (!a.has_size && !a.has_tolerance);
@@ -182,47 +193,32 @@ static uint8_t* gather(const uint8_t* mine, size_t n, size_t* counts) {
     return bytes;
 }
 
-/* OUT.pvtu's piece for rank q: OUT_q.vtu, and its name beside the .pvtu. */
+/* Rank q's piece: OUT_q.vtu for OUT.pvtu, OUT_q.msh for OUT.msh, and
+ * its name beside OUT. */
 static void piece_name(const char* out, int q, char* path, size_t size, const char** base) {
-    size_t n = strlen(out) - 5;
-    snprintf(path, size, "%.*s_%d.vtu", (int)n, out, q);
+    int msh = strcmp(out + strlen(out) - 4, ".msh") == 0;
+    size_t n = strlen(out) - (msh ? 4 : 5);
+    snprintf(path, size, "%.*s_%d.%s", (int)n, out, q, msh ? "msh" : "vtu");
     const char* slash = strrchr(path, '/');
     *base = slash ? slash + 1 : path;
 }
 
-static void write_piece(const char* path, const ls_trimesh* m, const int64_t* ids) {
+/* This rank's piece, nodes by their global ids; in a .msh its elements
+ * are tagged from past every lower rank's (a piece has at most
+ * nnodes + 4 * nelements elements: corners, lines and triangles). */
+static void write_piece(const args* a, const char* path, const ls_surface* surface,
+                        const ls_trimesh* m, const int64_t* ids) {
     size_t nodes = 0, elements = 0, per = 0;
-    const double* xyz = NULL;
-    const int32_t* tri = NULL;
-    const int32_t* face = NULL;
     check(ls_trimesh_counts(m, &nodes, &elements, &per), "piece counts");
-    check(ls_trimesh_xyz(m, &xyz), "piece nodes");
-    check(ls_trimesh_elements(m, &tri), "piece triangles");
-    check(ls_trimesh_element_faces(m, &face), "piece faces");
-    FILE* f = fopen(path, "w");
-    if (f == NULL) {
-        fprintf(stderr, "loopsurf-mpi: error: rank %d: %s: %s\n", rank_, path, strerror(errno));
-        MPI_Abort(MPI_COMM_WORLD, 2);
-    }
-    fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
-    fprintf(f, "<UnstructuredGrid>\n<Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", nodes, elements);
-    fprintf(f, "<PointData GlobalIds=\"GlobalNodeId\">\n<DataArray type=\"Int64\" Name=\"GlobalNodeId\" format=\"ascii\">\n");
-    for (size_t i = 0; i < nodes; i++) fprintf(f, "%lld\n", (long long)ids[i]);
-    fprintf(f, "</DataArray>\n</PointData>\n<CellData>\n<DataArray type=\"Int32\" Name=\"face\" format=\"ascii\">\n");
-    for (size_t e = 0; e < elements; e++) fprintf(f, "%d\n", face[e]);
-    fprintf(f, "</DataArray>\n</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for (size_t i = 0; i < nodes; i++) fprintf(f, "%.17g %.17g %.17g\n", xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    fprintf(f, "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    for (size_t e = 0; e < elements; e++) fprintf(f, "%d %d %d\n", tri[3 * e], tri[3 * e + 1], tri[3 * e + 2]);
-    fprintf(f, "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    for (size_t e = 0; e < elements; e++) fprintf(f, "%zu\n", 3 * (e + 1));
-    fprintf(f, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for (size_t e = 0; e < elements; e++) fprintf(f, "5\n");
-    fprintf(f, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    if (fclose(f) != 0) {
-        fprintf(stderr, "loopsurf-mpi: error: rank %d: writing %s failed\n", rank_, path);
-        MPI_Abort(MPI_COMM_WORLD, 2);
-    }
+    unsigned long long most = nodes + 4 * (unsigned long long)elements, before = 0;
+    MPI_Exscan(&most, &before, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+    if (rank_ == 0) before = 0; /* MPI_Exscan leaves rank 0's undefined */
+    ls_trimesh_write_options o;
+    check(ls_trimesh_write_options_default(&o), "write defaults");
+    o.binary = a->binary;
+    o.global_ids = ids;
+    o.first_element_tag = (int64_t)before + 1;
+    check(ls_trimesh_write(m, surface, path, &o), path);
 }
 
 static void write_master(const char* out) {
@@ -233,8 +229,13 @@ static void write_master(const char* out) {
     }
     fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
     fprintf(f, "<PUnstructuredGrid GhostLevel=\"0\">\n");
-    fprintf(f, "<PPointData GlobalIds=\"GlobalNodeId\">\n<PDataArray type=\"Int64\" Name=\"GlobalNodeId\"/>\n</PPointData>\n");
-    fprintf(f, "<PCellData>\n<PDataArray type=\"Int32\" Name=\"face\"/>\n</PCellData>\n");
+    /* The arrays every piece has (a piece without corners has no
+     * "corner" array). */
+    fprintf(f, "<PPointData GlobalIds=\"GlobalNodeId\">\n");
+    fprintf(f, "<PDataArray type=\"Float64\" Name=\"loopsurf_params\" NumberOfComponents=\"3\"/>\n");
+    fprintf(f, "<PDataArray type=\"Int64\" Name=\"GlobalNodeId\"/>\n</PPointData>\n");
+    fprintf(f, "<PCellData>\n<PDataArray type=\"Int32\" Name=\"face\"/>\n");
+    fprintf(f, "<PDataArray type=\"Int32\" Name=\"curve\"/>\n</PCellData>\n");
     fprintf(f, "<PPoints>\n<PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n</PPoints>\n");
     for (int q = 0; q < ranks_; q++) {
         char path[4096];
@@ -296,17 +297,21 @@ int main(int argc, char** argv) {
     char path[4096];
     const char* base = NULL;
     piece_name(a.output, rank_, path, sizeof path, &base);
-    write_piece(path, piece, ids);
-    if (rank_ == 0) write_master(a.output);
+    write_piece(&a, path, surface, piece, ids);
+    if (rank_ == 0 && !a.msh) write_master(a.output);
 
     size_t nodes = 0, elements = 0, per = 0;
     check(ls_trimesh_counts(piece, &nodes, &elements, &per), "piece counts");
     unsigned long long mine[2] = {elements, nodes}, sum[2] = {0, 0};
     MPI_Reduce(mine, sum, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     double seconds = MPI_Wtime() - start;
-    if (rank_ == 0)
-        printf("%llu triangles in %zu parts on %d ranks, in %.3f s; wrote %s and %d pieces\n", sum[0],
-               a.remesh.parts, ranks_, seconds, a.output, ranks_);
+    if (rank_ == 0) {
+        char first[4096];
+        const char* base = NULL;
+        piece_name(a.output, 0, first, sizeof first, &base);
+        printf("%llu triangles in %zu parts on %d ranks, in %.3f s; wrote %d pieces (%s, ...)%s%s\n", sum[0],
+               a.remesh.parts, ranks_, seconds, ranks_, first, a.msh ? "" : " and ", a.msh ? "" : a.output);
+    }
 
     ls_free_array(ids);
     ls_trimesh_free(piece);

@@ -1208,6 +1208,121 @@ static void test_remesh_job(void) {
     ls_surface_free(surface);
 }
 
+/* The first `n` bytes of a file as text ("" when it cannot be read). */
+static const char* head(const char* path, size_t n) {
+    static char text[256];
+    text[0] = '\0';
+    FILE* f = fopen(path, "rb");
+    if (!f) return text;
+    size_t got = fread(text, 1, n < sizeof text ? n : sizeof text - 1, f);
+    text[got] = '\0';
+    fclose(f);
+    return text;
+}
+
+/* The four numbers after a line `section` of a text .msh (for $Nodes
+ * and $Elements: blocks, count, smallest and largest tag); 0 when the
+ * file has no such section. */
+static int section_header(const char* path, const char* section, long long v[4]) {
+    char line[512];
+    int found = 0;
+    FILE* f = fopen(path, "r");
+    if (!f) return 0;
+    while (!found && fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = '\0';
+        if (strcmp(line, section) == 0 && fgets(line, sizeof line, f))
+            found = sscanf(line, "%lld %lld %lld %lld", &v[0], &v[1], &v[2], &v[3]) == 4;
+    }
+    fclose(f);
+    return found;
+}
+
+/* The remesher's mesh of a surface at size 0.4, without a tolerance. */
+static ls_trimesh* uniform_remesh(const ls_surface* surface) {
+    ls_remesh_options ro;
+    EXPECT(ls_remesh_options_default(&ro), LS_OK);
+    ro.size = 0.4;
+    ro.tolerance = 0;
+    ro.adapt_curvature = 0;
+    ls_trimesh* mesh = NULL;
+    EXPECT(ls_remesh(surface, &ro, &mesh), LS_OK);
+    return mesh;
+}
+
+/* ls_trimesh_write: .msh and .vtu, ASCII and binary, whole or as a piece
+ * with global ids; refusals leave no file behind. */
+static void test_trimesh_write(void) {
+    ls_surface* surface = octahedron(NULL);
+    ls_trimesh* mesh = uniform_remesh(surface);
+    if (!mesh) return;
+    const mesh_view m = view(mesh);
+    ls_trimesh_write_options o;
+    EXPECT(ls_trimesh_write_options_default(&o), LS_OK);
+    CHECK(o.struct_size == sizeof o && o.binary == 0 && o.global_ids == NULL && o.first_element_tag == 1);
+
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("w.msh"), NULL), LS_OK);
+    CHECK(strncmp(head(scratch("w.msh"), 23), "$MeshFormat\n4.1 0 8\n", 20) == 0);
+    o.binary = 1;
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("wb.msh"), &o), LS_OK);
+    CHECK(strncmp(head(scratch("wb.msh"), 20), "$MeshFormat\n4.1 1 8\n", 20) == 0);
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("wb.vtu"), &o), LS_OK);
+    CHECK(strstr(head(scratch("wb.vtu"), 200), "<VTKFile") != NULL);
+
+    /* A piece: node i tagged ids[i] + 1, elements from 1000. The $Nodes
+       header names the smallest and largest tag. */
+    int64_t* ids = malloc(m.nv * sizeof *ids);
+    for (size_t i = 0; i < m.nv; i++) ids[i] = 10 * (int64_t)i + 40;
+    o.binary = 0;
+    o.global_ids = ids;
+    o.first_element_tag = 1000;
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("piece.msh"), &o), LS_OK);
+    long long nodes[4] = {0}, elements[4] = {0};
+    CHECK(section_header(scratch("piece.msh"), "$Nodes", nodes));
+    CHECK(nodes[1] == (long long)m.nv && nodes[2] == 41 && nodes[3] == 10 * (long long)(m.nv - 1) + 41);
+    CHECK(section_header(scratch("piece.msh"), "$Elements", elements));
+    CHECK(elements[1] >= (long long)m.nt && elements[2] == 1000 && elements[3] == 1000 + elements[1] - 1);
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("piece.vtu"), &o), LS_OK);
+    CHECK(strstr(head(scratch("piece.vtu"), 255), "<VTKFile") != NULL);
+
+    /* Refusals, each naming what is wrong; no file is made. */
+    ids[2] = ids[1];
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("bad.msh"), &o), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "global_ids[1] and global_ids[2]") != NULL);
+    ids[2] = -5;
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("bad.msh"), &o), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "negative") != NULL);
+    o.global_ids = NULL;
+    o.first_element_tag = 0;
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("bad.msh"), &o), LS_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(ls_last_error(), "first_element_tag") != NULL);
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("bad.obj"), NULL), LS_ERR_UNSUPPORTED);
+    CHECK(strstr(ls_last_error(), ".msh or .vtu") != NULL);
+    EXPECT(ls_trimesh_write(mesh, surface, "/nonexistent-dir/x.msh", NULL), LS_ERR_IO);
+    CHECK(strstr(ls_last_error(), "/nonexistent-dir/x.msh") != NULL);
+    EXPECT(ls_trimesh_write(mesh, surface, NULL, NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_trimesh_write(NULL, surface, scratch("bad.msh"), NULL), LS_ERR_NULL_POINTER);
+    EXPECT(ls_trimesh_write(mesh, NULL, scratch("bad.msh"), NULL), LS_ERR_NULL_POINTER);
+    ls_trimesh_write_options small = o;
+    small.struct_size = 3;
+    EXPECT(ls_trimesh_write(mesh, surface, scratch("bad.msh"), &small), LS_ERR_INVALID_ARGUMENT);
+    CHECK(fopen(scratch("bad.msh"), "r") == NULL && fopen(scratch("bad.obj"), "r") == NULL);
+
+    /* ls_adapt's mesh has no faces to write. */
+    ls_adapt_options ao;
+    EXPECT(ls_adapt_options_default(&ao), LS_OK);
+    ls_trimesh* adapted = NULL;
+    EXPECT(ls_adapt(surface, &ao, &adapted), LS_OK);
+    EXPECT(ls_trimesh_write(adapted, surface, scratch("bad.msh"), NULL), LS_ERR_UNSUPPORTED);
+    CHECK(strstr(ls_last_error(), "element faces") != NULL);
+
+    const char* written[] = {"w.msh", "wb.msh", "wb.vtu", "piece.msh", "piece.vtu"};
+    for (size_t i = 0; i < sizeof written / sizeof *written; i++) CHECK(remove(scratch(written[i])) == 0);
+    free(ids);
+    ls_trimesh_free(adapted);
+    ls_trimesh_free(mesh);
+    ls_surface_free(surface);
+}
+
 /* One ls_adapt call with the given options; its mesh, or NULL. */
 static ls_trimesh* adapt(ls_surface* surface, double angle, double tolerance, int levels, int to_limit, int status) {
     ls_adapt_options o;
@@ -1337,13 +1452,7 @@ static void test_streams(void) {
    output untouched. */
 static void test_mesh_curve(void) {
     ls_surface* surface = octahedron(NULL);
-    ls_remesh_options ro;
-    EXPECT(ls_remesh_options_default(&ro), LS_OK);
-    ro.size = 0.4;
-    ro.tolerance = 0;
-    ro.adapt_curvature = 0;
-    ls_trimesh* linear = NULL;
-    EXPECT(ls_remesh(surface, &ro, &linear), LS_OK);
+    ls_trimesh* linear = uniform_remesh(surface);
     const mesh_view m = view(linear);
     const size_t nv = m.nv, nt = m.nt;
     /* Another tool's mesh: arrays the caller owns. */
@@ -1816,6 +1925,7 @@ int main(int argc, char** argv) {
     test_remesh(data_dir);
     test_remesh_job();
     test_mesh_curve();
+    test_trimesh_write();
     test_adapt();
     test_streams();
     test_fit();

@@ -35,7 +35,8 @@ def main(ref_path, pvtu):
     merged = []
     for source in sources:
         piece = meshio.read(os.path.join(os.path.dirname(pvtu), source))
-        ids = piece.point_data["GlobalNodeId"].astype(np.int64)
+        # (n,) or, where the piece says NumberOfComponents="1", (n, 1).
+        ids = piece.point_data["GlobalNodeId"].astype(np.int64).reshape(-1)
         if len(ids) and (ids.min() < 0 or ids.max() >= len(points)):
             fail(f"{source}: a global id outside 0..{len(points) - 1}")
         if len(np.unique(ids)) != len(ids):

@@ -20,7 +20,7 @@ refused() {
 }
 refused "unknown option --bogus" "$mesh" --bogus -o x.pvtu
 refused "no such file\|No such file\|missing.off" missing.off -o x.pvtu
-refused "the output is a .pvtu" "$mesh" -o x.vtu
+refused "the output is a .pvtu .* or a .msh" "$mesh" -o x.vtu
 refused "--parts 0: must be at least 1" "$mesh" --parts 0 -o x.pvtu
 refused "size" "$mesh" --size -1 -o x.pvtu
 refused "not a number" "$mesh" --size abc -o x.pvtu

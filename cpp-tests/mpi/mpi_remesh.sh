@@ -1,10 +1,23 @@
 #!/bin/sh
 # loopsurf-mpi on NP ranks in 4 parts of fandisk, its pieces merged on
 # their global node ids and compared with `loopsurf mesh --parts 4`'s
-# mesh (reference.vtu, made by the mpi_remesh_reference test).
-# Usage: mpi_remesh.sh MPIEXEC NP LOOPSURF_MPI MESH MERGE_PIECES_PY
+# mesh (reference.vtu, made by the mpi_remesh_reference test). FORMAT is
+# vtu or msh (.vtu pieces merged by merge_pieces.py, .msh pieces merged
+# in gmsh by merge_msh_pieces.py); any further arguments go to
+# loopsurf-mpi (e.g. --binary).
+# Usage: mpi_remesh.sh MPIEXEC NP LOOPSURF_MPI MESH SCRIPTS_DIR FORMAT [ARGS...]
 set -e
-mpiexec=$1 np=$2 program=$3 mesh=$4 merge=$5
-rm -f "pieces_$np.pvtu" pieces_"$np"_*.vtu
-"$mpiexec" --allow-run-as-root --oversubscribe -np "$np" "$program" "$mesh" --hard-angle 30 --parts 4 -o "pieces_$np.pvtu"
-python3 "$merge" reference.vtu "pieces_$np.pvtu"
+mpiexec=$1 np=$2 program=$3 mesh=$4 scripts=$5 format=$6
+shift 6
+name="pieces_${np}_$format$(echo "$@" | tr -d ' -')"
+rm -f "$name".pvtu "$name"_*.vtu "$name"_*.msh
+if [ "$format" = msh ]; then
+    "$mpiexec" --allow-run-as-root --oversubscribe -np "$np" "$program" "$mesh" --hard-angle 30 --parts 4 "$@" -o "$name.msh"
+    q=0 pieces=""
+    while [ "$q" -lt "$np" ]; do pieces="$pieces ${name}_$q.msh"; q=$((q + 1)); done
+    # shellcheck disable=SC2086
+    python3 "$scripts/merge_msh_pieces.py" reference.vtu $pieces
+else
+    "$mpiexec" --allow-run-as-root --oversubscribe -np "$np" "$program" "$mesh" --hard-angle 30 --parts 4 "$@" -o "$name.pvtu"
+    python3 "$scripts/merge_pieces.py" reference.vtu "$name.pvtu"
+fi

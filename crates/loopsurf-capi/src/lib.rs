@@ -45,6 +45,7 @@ pub mod status;
 pub mod stream;
 pub mod surface;
 pub mod trimesh;
+pub mod trimesh_write;
 
 pub use adapt::*;
 pub use closest::*;

@@ -49,8 +49,8 @@ const SECTIONS: &[(&str, &str, &[&str])] = &[
     ),
     (
         "Meshes",
-        "Meshes on the surface (ls_trimesh): the chart mesher, the quality remesher (whole, or in parts shared out among the ranks of a caller's MPI job), curving another tool's mesh, and the model labels of any mesh.",
-        &["trimesh.rs", "mesh.rs", "remesh.rs", "remesh_job.rs", "mesh_curve.rs", "mesh_labels.rs"],
+        "Meshes on the surface (ls_trimesh): the chart mesher, the quality remesher (whole, or in parts shared out among the ranks of a caller's MPI job), curving another tool's mesh, the model labels of any mesh, and writing a mesh (or a rank's piece of one) to .msh or .vtu.",
+        &["trimesh.rs", "mesh.rs", "remesh.rs", "remesh_job.rs", "mesh_curve.rs", "mesh_labels.rs", "trimesh_write.rs"],
     ),
     (
         "Streams",

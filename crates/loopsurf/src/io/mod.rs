@@ -31,7 +31,8 @@ mod vtu;
 pub use cart3d::{read_tri, write_tri, write_tri_with_components};
 pub use lagrange::{nodes_per_triangle, LagrangeMesh, MAX_LAGRANGE_ORDER};
 pub use msh::{
-    parse_msh, read_msh, write_msh, MshElement, MshMesh, MshNodeData, MshPhysicalName, PARAMS_VIEW,
+    parse_msh, read_msh, write_msh, write_msh_tagged, MshElement, MshMesh, MshNodeData,
+    MshPhysicalName, MshTags, PARAMS_VIEW,
 };
 pub use obj::{read_obj, write_obj};
 pub use off::{read_off, write_off};
@@ -233,6 +234,18 @@ fn create(path: &Path) -> Result<BufWriter<File>> {
             path: path.to_path_buf(),
             source,
         })
+}
+
+/// Two positions holding the same value, if any (the lowest value
+/// repeated, its first two positions): for checking ids that must be
+/// distinct.
+pub fn repeated<T: Ord + Copy>(values: &[T]) -> Option<(usize, usize)> {
+    let mut sorted: Vec<(T, usize)> = values.iter().copied().zip(0..).collect();
+    sorted.sort_unstable();
+    sorted
+        .windows(2)
+        .find(|w| w[0].0 == w[1].0)
+        .map(|w| (w[0].1, w[1].1))
 }
 
 /// Turns a write error into an [`Error::Io`] naming the file.

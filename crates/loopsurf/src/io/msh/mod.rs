@@ -14,12 +14,14 @@
 //! - every node sits on the lowest-dimensional entity it belongs to
 //!   (corner, else the curve of the first line through it, else the face
 //!   of the first triangle using it), so gmsh's own classification agrees;
-//!   node tags are index + 1, and the nodes are written in index order,
+//!   node tags are index + 1 (or, for a piece of a mesh shared out among
+//!   ranks, the tags [`MshTags`] gives), and the nodes are written in index order,
 //!   one block per run of consecutive nodes on one entity (gmsh merges the
 //!   blocks of an entity): readers that ignore tags and take nodes and
 //!   `$NodeData` values by position (meshio, which also insists on tags
 //!   1..n in binary views) still pair every value with its node;
-//! - element tags are consecutive: the corners' point elements, then the
+//! - element tags are consecutive from 1 (or from [`MshTags`]' first): the
+//!   corners' point elements, then the
 //!   lines, then the triangles, each in the mesh's order, so that reading
 //!   back and sorting by tag ([`MshMesh::to_lagrange`]) restores the order
 //!   even though elements are grouped by entity;
@@ -49,7 +51,7 @@ pub(super) mod tests;
 mod write;
 
 pub use read::{parse_msh, read_msh, MshElement, MshMesh, MshNodeData, MshPhysicalName};
-pub use write::write_msh;
+pub use write::{write_msh, write_msh_tagged, MshTags};
 
 /// The name of the `$NodeData` view holding each node's (triangle, v, w).
 pub const PARAMS_VIEW: &str = "loopsurf_params";

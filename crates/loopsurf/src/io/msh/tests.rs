@@ -194,6 +194,77 @@ fn round_trip_every_order_ascii_and_binary() {
     }
 }
 
+/// A piece's tags: nodes by the tags given, elements from an offset,
+/// corner points named by their node's tag; it reads back as the same
+/// mesh, in ASCII and binary. Tags that are 0, repeated, too many or too
+/// large for a view are refused, and nothing is written.
+#[test]
+fn tagged_pieces_keep_their_tags() {
+    let mesh = fixture(2);
+    let n = mesh.nodes.len() as u64;
+    // Gapped and increasing: the reader, which orders nodes by tag, gives
+    // them back in the mesh's order.
+    let nodes: Vec<u64> = (0..n).map(|i| 1_000_000 + 7 * i).collect();
+    let tags = MshTags {
+        nodes: Some(&nodes),
+        first_element: 501,
+    };
+    for binary in [false, true] {
+        let path = scratch(&format!("tagged{binary}.msh"));
+        write_msh_tagged(&path, &mesh, binary, tags).unwrap();
+        let read = read_msh(&path).unwrap();
+        assert_eq!(read.node_tags, nodes);
+        let mut elements: Vec<u64> = (read.points.iter())
+            .chain(&read.lines)
+            .chain(&read.triangles)
+            .map(|e| e.tag)
+            .collect();
+        elements.sort_unstable();
+        assert_eq!(elements, (501..501 + 3 + 4 + 8).collect::<Vec<u64>>());
+        for e in &read.points {
+            assert_eq!(e.entity as u64, nodes[e.nodes[0] as usize]);
+        }
+        assert_identical(&read.to_lagrange().unwrap(), &mesh);
+        std::fs::remove_file(&path).unwrap();
+    }
+    // Decreasing: every tag still names its node.
+    let reversed: Vec<u64> = nodes.iter().rev().copied().collect();
+    let path = scratch("tagged-reversed.msh");
+    let tags = MshTags {
+        nodes: Some(&reversed),
+        first_element: 1,
+    };
+    write_msh_tagged(&path, &mesh, false, tags).unwrap();
+    let read = read_msh(&path).unwrap();
+    for (tag, p) in read.node_tags.iter().zip(&read.nodes) {
+        let i = reversed.iter().position(|t| t == tag).unwrap();
+        assert_eq!(*p, mesh.nodes[i]);
+    }
+    std::fs::remove_file(&path).unwrap();
+    let refused = |nodes: &[u64], first_element: u64, what: &str| {
+        let path = scratch("refused.msh");
+        let tags = MshTags {
+            nodes: Some(nodes),
+            first_element,
+        };
+        let err = write_msh_tagged(&path, &mesh, false, tags).unwrap_err();
+        assert!(err.to_string().contains(what), "{err}");
+        assert!(!path.exists());
+    };
+    let mut twice = nodes.clone();
+    twice[5] = twice[2];
+    refused(&twice, 1, "nodes 2 and 5 have the same tag");
+    let mut zero = nodes.clone();
+    zero[3] = 0;
+    refused(&zero, 1, "node 3's tag is 0");
+    let mut wide = nodes.clone();
+    wide[4] = 1 << 40;
+    refused(&wide, 1, "32-bit");
+    refused(&nodes[1..], 1, "tags for");
+    refused(&nodes, 0, "first element tag is 0");
+    refused(&nodes, u64::MAX - 3, "pass the largest tag");
+}
+
 /// Without params there is no view; a mesh with nothing but nodes
 /// still makes a file gmsh's format allows.
 #[test]

@@ -9,22 +9,122 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::{LINE_TYPES, PARAMS_VIEW, POINT_TYPE, TRIANGLE_TYPES};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::io::lagrange::LagrangeMesh;
 
 /// Writes a Lagrange triangle mesh as gmsh MSH 4.1, ASCII or binary; see
 /// the module doc for what goes where. The mesh is validated first
 /// ([`LagrangeMesh::validate`]).
 pub fn write_msh(path: &Path, mesh: &LagrangeMesh, binary: bool) -> Result<()> {
+    write_msh_tagged(path, mesh, binary, MshTags::default())
+}
+
+/// The tags a file gives its nodes and elements. By default node i is
+/// tag i + 1 and the elements are tagged 1, 2, ... A piece of a mesh
+/// shared out among ranks instead tags its nodes with their ids in the
+/// whole mesh (plus one) and its elements from an offset of its own, so
+/// that the pieces merged on their tags (gmsh merges files that way)
+/// share the nodes on their borders and keep every element.
+#[derive(Debug, Clone, Copy)]
+pub struct MshTags<'a> {
+    /// One tag per node, at least 1 and all distinct; `None` for index + 1.
+    pub nodes: Option<&'a [u64]>,
+    /// The tag of the first element; the others follow it one by one.
+    pub first_element: u64,
+}
+
+impl Default for MshTags<'_> {
+    fn default() -> Self {
+        MshTags {
+            nodes: None,
+            first_element: 1,
+        }
+    }
+}
+
+impl MshTags<'_> {
+    /// Node i's tag.
+    fn node(&self, i: u32) -> u64 {
+        self.nodes.map_or(i as u64 + 1, |t| t[i as usize])
+    }
+
+    /// The tag of the point entity of the j-th corner, at `node`: j + 1,
+    /// or with node tags given, the node's tag, which names the same
+    /// point in every piece.
+    fn corner_entity(&self, j: usize, node: u32) -> i32 {
+        match self.nodes {
+            None => j as i32 + 1,
+            Some(t) => t[node as usize] as i32,
+        }
+    }
+
+    /// Checks the tags against the mesh: one per node, distinct, at least
+    /// 1, and small enough for a `$NodeData` view's 32-bit node tags when
+    /// the mesh has surface parameters to write in one.
+    fn check(&self, mesh: &LagrangeMesh) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidArgument(m));
+        if self.first_element == 0 {
+            return bad("the first element tag is 0: gmsh's tags start at 1".into());
+        }
+        let elements = (mesh.corners.len() + mesh.num_lines() + mesh.num_triangles()) as u64;
+        if self.first_element.checked_add(elements).is_none() {
+            return bad(format!(
+                "{elements} elements from tag {} pass the largest tag",
+                self.first_element
+            ));
+        }
+        let Some(tags) = self.nodes else {
+            return Ok(());
+        };
+        if tags.len() != mesh.nodes.len() {
+            return bad(format!(
+                "{} node tags for {} nodes",
+                tags.len(),
+                mesh.nodes.len()
+            ));
+        }
+        if let Some(i) = tags.iter().position(|&t| t == 0) {
+            return bad(format!("node {i}'s tag is 0: gmsh's tags start at 1"));
+        }
+        // Views and point entities have 32-bit tags.
+        let int = i32::MAX as u64;
+        let view = !mesh.params.is_empty();
+        if let Some(i) = (0..tags.len()).find(|&i| view && tags[i] > int) {
+            return bad(format!(
+                "node {i}'s tag {} passes {int}, and the $NodeData view of surface parameters has 32-bit node tags",
+                tags[i]
+            ));
+        }
+        if let Some(&(node, _)) = mesh.corners.iter().find(|&&(n, _)| tags[n as usize] > int) {
+            return bad(format!(
+                "corner node {node}'s tag {} passes {int}, and it names a point entity, whose tags are 32-bit",
+                tags[node as usize]
+            ));
+        }
+        if let Some((a, b)) = crate::io::repeated(tags) {
+            return bad(format!("nodes {a} and {b} have the same tag {}", tags[a]));
+        }
+        Ok(())
+    }
+}
+
+/// [`write_msh`] with the node and element tags of `tags`.
+pub fn write_msh_tagged(
+    path: &Path,
+    mesh: &LagrangeMesh,
+    binary: bool,
+    tags: MshTags,
+) -> Result<()> {
     mesh.validate()?;
-    let layout = Layout::new(mesh);
+    tags.check(mesh)?;
+    let layout = Layout::new(mesh, &tags);
     let mut w = crate::io::create(path)?;
     let mut out = Out {
         w: &mut w,
         binary,
         first: true,
     };
-    write_file(&mut out, mesh, &layout).map_err(crate::io::io_error(path))?;
+    write_file(&mut out, mesh, &layout, &tags).map_err(crate::io::io_error(path))?;
     crate::io::finish(w, path)
 }
 
@@ -81,7 +181,7 @@ struct Layout {
 }
 
 impl Layout {
-    fn new(mesh: &LagrangeMesh) -> Layout {
+    fn new(mesh: &LagrangeMesh, tags: &MshTags) -> Layout {
         let (npt, npl) = (mesh.nodes_per_triangle(), mesh.nodes_per_line());
         let mut lines_by_curve: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
         for (l, &c) in mesh.line_curves.iter().enumerate() {
@@ -113,7 +213,7 @@ impl Layout {
             .map(|(&f, ts)| entity(f, ts, &mesh.triangles, npt))
             .collect();
 
-        let node_blocks = node_blocks(mesh, &mut surfaces);
+        let node_blocks = node_blocks(mesh, tags, &mut surfaces);
         Layout {
             curves,
             surfaces,
@@ -129,12 +229,13 @@ impl Layout {
 /// node indices.
 fn node_blocks(
     mesh: &LagrangeMesh,
+    tags: &MshTags,
     surfaces: &mut Vec<Entity>,
 ) -> Vec<((i32, i32), std::ops::Range<u32>)> {
     // Each node on its lowest-dimensional entity.
     let mut home: Vec<Option<(i32, i32)>> = vec![None; mesh.nodes.len()];
     for (k, &(node, _)) in mesh.corners.iter().enumerate() {
-        home[node as usize] = Some((0, k as i32 + 1));
+        home[node as usize] = Some((0, tags.corner_entity(k, node)));
     }
     for (l, &c) in mesh.line_curves.iter().enumerate() {
         for &i in mesh.line(l) {
@@ -256,13 +357,14 @@ fn write_file<W: Write>(
     o: &mut Out<W>,
     mesh: &LagrangeMesh,
     layout: &Layout,
+    tags: &MshTags,
 ) -> std::io::Result<()> {
     write_format(o)?;
     write_physical_names(o, mesh, layout)?;
-    write_entities(o, mesh, layout)?;
-    write_nodes(o, mesh, layout)?;
-    write_elements(o, mesh, layout)?;
-    write_params(o, mesh)
+    write_entities(o, mesh, layout, tags)?;
+    write_nodes(o, mesh, layout, tags)?;
+    write_elements(o, mesh, layout, tags)?;
+    write_params(o, mesh, tags)
 }
 
 /// `$MeshFormat`: version 4.1, text or binary (with its endianness
@@ -312,6 +414,7 @@ fn write_entities<W: Write>(
     o: &mut Out<W>,
     mesh: &LagrangeMesh,
     layout: &Layout,
+    tags: &MshTags,
 ) -> std::io::Result<()> {
     let ncorners = mesh.corners.len();
     o.text("$Entities")?;
@@ -321,7 +424,7 @@ fn write_entities<W: Write>(
     o.size(0)?;
     o.eol()?;
     for (j, &(node, id)) in mesh.corners.iter().enumerate() {
-        o.int(j as i32 + 1)?;
+        o.int(tags.corner_entity(j, node))?;
         o.point(mesh.nodes[node as usize])?;
         o.size(1)?;
         o.int(id as i32 + 1)?;
@@ -350,13 +453,17 @@ fn write_nodes<W: Write>(
     o: &mut Out<W>,
     mesh: &LagrangeMesh,
     layout: &Layout,
+    tags: &MshTags,
 ) -> std::io::Result<()> {
-    let n = mesh.nodes.len() as u64;
+    let n = mesh.nodes.len() as u32;
+    let (min, max) = (0..n)
+        .map(|i| tags.node(i))
+        .fold((u64::MAX, 0), |(lo, hi), t| (lo.min(t), hi.max(t)));
     o.text("$Nodes")?;
     o.size(layout.node_blocks.len() as u64)?;
-    o.size(n)?;
-    o.size(n.min(1))?;
-    o.size(n)?;
+    o.size(n as u64)?;
+    o.size(if n == 0 { 0 } else { min })?;
+    o.size(max)?;
     o.eol()?;
     for ((dim, tag), nodes) in &layout.node_blocks {
         o.int(*dim)?;
@@ -365,7 +472,7 @@ fn write_nodes<W: Write>(
         o.size(nodes.len() as u64)?;
         o.eol()?;
         for i in nodes.clone() {
-            o.size(i as u64 + 1)?;
+            o.size(tags.node(i))?;
             o.eol()?;
         }
         for i in nodes.clone() {
@@ -383,26 +490,29 @@ fn write_elements<W: Write>(
     o: &mut Out<W>,
     mesh: &LagrangeMesh,
     layout: &Layout,
+    tags: &MshTags,
 ) -> std::io::Result<()> {
     let k = mesh.order;
     let (npt, npl) = (mesh.nodes_per_triangle(), mesh.nodes_per_line());
     let (ncorners, nlines, ntris) = (mesh.corners.len(), mesh.num_lines(), mesh.num_triangles());
     let total = (ncorners + nlines + ntris) as u64;
     let blocks = ncorners + layout.lines_by_curve.len() + layout.tris_by_face.len();
+    // Element e (corners, lines, then triangles) is tag first + e.
+    let first = tags.first_element;
     o.text("$Elements")?;
     o.size(blocks as u64)?;
     o.size(total)?;
-    o.size(total.min(1))?;
-    o.size(total)?;
+    o.size(if total == 0 { 0 } else { first })?;
+    o.size(if total == 0 { 0 } else { first + total - 1 })?;
     o.eol()?;
     for (j, &(node, _)) in mesh.corners.iter().enumerate() {
-        for x in [0, j as i32 + 1, POINT_TYPE] {
+        for x in [0, tags.corner_entity(j, node), POINT_TYPE] {
             o.int(x)?;
         }
         o.size(1)?;
         o.eol()?;
-        o.size(j as u64 + 1)?;
-        o.size(node as u64 + 1)?;
+        o.size(first + j as u64)?;
+        o.size(tags.node(node))?;
         o.eol()?;
     }
     let groups = [
@@ -431,9 +541,9 @@ fn write_elements<W: Write>(
             o.size(elements.len() as u64)?;
             o.eol()?;
             for &e in elements {
-                o.size((first_tag + e) as u64 + 1)?;
+                o.size(first + (first_tag + e) as u64)?;
                 for &i in &nodes[e * per..(e + 1) * per] {
-                    o.size(i as u64 + 1)?;
+                    o.size(tags.node(i))?;
                 }
                 o.eol()?;
             }
@@ -444,7 +554,11 @@ fn write_elements<W: Write>(
 }
 
 /// `$NodeData`: the view of every node's surface parameters, if given.
-fn write_params<W: Write>(o: &mut Out<W>, mesh: &LagrangeMesh) -> std::io::Result<()> {
+fn write_params<W: Write>(
+    o: &mut Out<W>,
+    mesh: &LagrangeMesh,
+    tags: &MshTags,
+) -> std::io::Result<()> {
     if !mesh.params.is_empty() {
         // The header of a view is text in both modes.
         o.text("$NodeData")?;
@@ -457,8 +571,9 @@ fn write_params<W: Write>(o: &mut Out<W>, mesh: &LagrangeMesh) -> std::io::Resul
         o.text("3")?;
         o.text(&mesh.nodes.len().to_string())?;
         for (i, &(tri, v, w)) in mesh.params.iter().enumerate() {
-            // The node tag of a view entry is an int, even in binary 4.1.
-            o.int(i as i32 + 1)?;
+            // The node tag of a view entry is an int, even in binary 4.1
+            // (MshTags::check keeps the tags within it).
+            o.int(tags.node(i as u32) as i32)?;
             o.real(tri as f64)?;
             o.real(v)?;
             o.real(w)?;

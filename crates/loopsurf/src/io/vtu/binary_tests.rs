@@ -24,12 +24,17 @@ fn linear_binary_round_trip() {
     let k = [0.5, -1e-300, 7.0, f64::MIN_POSITIVE];
     let normals = [DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_ONE];
     let ids = [i32::MIN, -1, i32::MAX];
+    let global = [-(1i64 << 53), 0, 1 << 40, (1 << 53) - 1];
     write_vtu_with_lines(
         &path,
         &points,
         &tris,
         &lines,
-        &[("k", DataArray::F64(&k)), ("n", DataArray::Vec3(&normals))],
+        &[
+            ("k", DataArray::F64(&k)),
+            ("n", DataArray::Vec3(&normals)),
+            ("global", DataArray::I64(&global)),
+        ],
         &[("id", DataArray::I32(&ids))],
         true,
     )
@@ -60,6 +65,8 @@ fn linear_binary_round_trip() {
     );
     let id = read.cell_array("id").unwrap();
     assert_eq!(id.values, ids.map(f64::from));
+    let global_read = &read.point_array("global").unwrap().values;
+    assert_eq!(*global_read, global.map(|x| x as f64));
     std::fs::remove_file(&path).unwrap();
 }
 

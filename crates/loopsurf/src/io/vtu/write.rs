@@ -21,6 +21,8 @@ pub enum DataArray<'a> {
     F64(&'a [f64]),
     /// One 32-bit integer per element (`Int32`), e.g. component IDs.
     I32(&'a [i32]),
+    /// One 64-bit integer per element (`Int64`), e.g. global node ids.
+    I64(&'a [i64]),
     /// One 3-vector per element (`Float64`, 3 components), e.g. normals.
     Vec3(&'a [DVec3]),
 }
@@ -30,6 +32,7 @@ impl DataArray<'_> {
         match self {
             DataArray::F64(a) => a.len(),
             DataArray::I32(a) => a.len(),
+            DataArray::I64(a) => a.len(),
             DataArray::Vec3(a) => a.len(),
         }
     }
@@ -39,6 +42,7 @@ impl DataArray<'_> {
         match self {
             DataArray::F64(a) => a.iter().flat_map(|x| x.to_le_bytes()).collect(),
             DataArray::I32(a) => a.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            DataArray::I64(a) => a.iter().flat_map(|x| x.to_le_bytes()).collect(),
             DataArray::Vec3(a) => a
                 .iter()
                 .flat_map(|p| p.to_array())
@@ -51,7 +55,7 @@ impl DataArray<'_> {
     fn non_finite(&self) -> Option<usize> {
         match self {
             DataArray::F64(a) => a.iter().position(|x| !x.is_finite()),
-            DataArray::I32(_) => None,
+            DataArray::I32(_) | DataArray::I64(_) => None,
             DataArray::Vec3(a) => a.iter().position(|v| !v.is_finite()),
         }
     }
@@ -399,6 +403,7 @@ fn write_array(
     let (ty, comps) = match array {
         DataArray::F64(_) => ("Float64", 1),
         DataArray::I32(_) => ("Int32", 1),
+        DataArray::I64(_) => ("Int64", 1),
         DataArray::Vec3(_) => ("Float64", 3),
     };
     open_array(w, ty, name, Some(comps), binary)?;
@@ -414,6 +419,11 @@ fn write_array(
             }
         }
         DataArray::I32(a) => {
+            for x in *a {
+                writeln!(w, "          {x}")?;
+            }
+        }
+        DataArray::I64(a) => {
             for x in *a {
                 writeln!(w, "          {x}")?;
             }
