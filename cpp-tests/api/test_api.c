@@ -1249,6 +1249,20 @@ static ls_trimesh* uniform_remesh(const ls_surface* surface) {
     return mesh;
 }
 
+/* Whether a text file has a line `line`. */
+static int has_line(const char* path, const char* line) {
+    char buffer[512];
+    int found = 0;
+    FILE* f = fopen(path, "r");
+    if (!f) return 0;
+    while (!found && fgets(buffer, sizeof buffer, f)) {
+        buffer[strcspn(buffer, "\n")] = '\0';
+        found = strcmp(buffer, line) == 0;
+    }
+    fclose(f);
+    return found;
+}
+
 /* ls_trimesh_write: .msh and .vtu, ASCII and binary, whole or as a piece
  * with global ids; refusals leave no file behind. */
 static void test_trimesh_write(void) {
@@ -1506,6 +1520,15 @@ static void test_mesh_curve(void) {
                     }
         CHECK(shared == 3 * nt / 2);
         for (size_t t = 0; t < nt; t++) CHECK(face[t] == 0);
+        /* Curved meshes are written as Lagrange elements: gmsh's type 9
+           (6-node triangle) or 21 (10-node), one block for the one face. */
+        EXPECT(ls_trimesh_write(mesh, surface, scratch("curved.msh"), NULL), LS_OK);
+        long long blocks[4] = {0};
+        CHECK(section_header(scratch("curved.msh"), "$Elements", blocks) && blocks[1] == (long long)ne);
+        char block[64];
+        snprintf(block, sizeof block, "2 1 %d %zu", order == 2 ? 9 : 21, ne);
+        CHECK(has_line(scratch("curved.msh"), block));
+        CHECK(remove(scratch("curved.msh")) == 0);
         ls_trimesh_free(mesh);
     }
     ls_trimesh* const untouched = (ls_trimesh*)&SENTINEL;
