@@ -136,6 +136,21 @@ fn lagrange_round_trip() {
         assert_identical(&read.to_lagrange().unwrap(), &want);
         std::fs::remove_file(&path).unwrap();
     }
+    // An empty mesh (a rank's empty piece) has the arrays every mesh with
+    // params has, ASCII and binary, and reads back empty.
+    for binary in [false, true] {
+        let path = scratch(&format!("empty{binary}.vtu"));
+        let empty = crate::io::LagrangeMesh {
+            order: 1,
+            ..Default::default()
+        };
+        write_vtu_lagrange(&path, &empty, &[], &[], binary).unwrap();
+        let read = read_vtu(&path).unwrap();
+        let names: Vec<&str> = read.point_data.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["loopsurf_params"]);
+        assert_identical(&read.to_lagrange().unwrap(), &empty);
+        std::fs::remove_file(&path).unwrap();
+    }
     // Reserved names are refused.
     let mesh = fixture(2);
     let faces = vec![0; 12];

@@ -142,7 +142,7 @@ pub fn write_vtu_with_lines(
 /// - cell array `face` (Int32): the triangle's face id, −1 on lines;
 /// - cell array `curve` (Int32): the line's curve id, −1 on triangles;
 /// - point array `loopsurf_params` (Float64, 3 components: triangle, v, w)
-///   when the mesh has params;
+///   when the mesh has params (or no nodes);
 /// - point array `corner` (Int32): the corner id, −1 elsewhere, when the
 ///   mesh has corners.
 ///
@@ -189,7 +189,9 @@ pub fn write_vtu_lagrange(
         .chain(mesh.line_curves.iter().map(|&c| c as i32))
         .collect();
     let mut points_out: Vec<(&str, DataArray)> = Vec::new();
-    if !params.is_empty() {
+    // An empty mesh has (no) params too: a rank's empty piece of a .pvtu
+    // then has the arrays its other pieces have.
+    if !params.is_empty() || mesh.nodes.is_empty() {
         points_out.push(("loopsurf_params", DataArray::Vec3(&params)));
     }
     if !corner.is_empty() {
