@@ -26,8 +26,9 @@ pub struct Surface {
     /// Displacement mode only: original point minus limit point, per vertex.
     displacement: Vec<DVec3>,
     /// What layers above build from the surface on first use, one slot
-    /// per kind (the snap index on the first snap, the curves' lengths on
-    /// the first length asked), so users who only evaluate never pay for
+    /// per kind (the snap index on the first snap, an index of whole
+    /// patches on the first chord-error check, the curves' lengths on the
+    /// first length asked), so users who only evaluate never pay for
     /// them. A slot is claimed for its kind first and filled after, so
     /// that building one kind never waits on the building of another.
     derived: [DerivedSlot; DERIVED_KINDS],
@@ -36,7 +37,7 @@ pub struct Surface {
 }
 
 /// How many kinds of [`Derived`] data a surface can hold.
-const DERIVED_KINDS: usize = 2;
+const DERIVED_KINDS: usize = 3;
 
 /// One kind of [`Derived`] data: the type it was claimed for, and the data
 /// once built.

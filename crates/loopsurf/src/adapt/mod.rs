@@ -368,6 +368,7 @@ impl AdaptiveMesh {
     /// The largest distance of a vertex to the limit surface (global
     /// closest point, started at the vertex's parameters).
     pub fn max_surface_distance(&self, surface: &Surface) -> Result<f64> {
+        crate::snap::build_index(surface);
         self.net
             .points()
             .par_iter()

@@ -55,6 +55,7 @@ pub struct FitReport {
 
 /// Certified distances from `surface` to `points`, relative to `diagonal`.
 pub fn distances(surface: &Surface, points: &[DVec3], diagonal: f64) -> Result<Distances> {
+    snap::build_index(surface);
     let d: Vec<f64> = points
         .par_iter()
         .map(|&p| snap::closest_point(surface, p).map(|s| s.distance / diagonal))

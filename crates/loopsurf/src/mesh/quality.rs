@@ -5,7 +5,7 @@
 use super::SurfaceMesh;
 use crate::error::Result;
 use crate::geometry::{area_normal, max_cosine};
-use crate::snap::{project, snap_near};
+use crate::snap::{project, FewSnaps};
 use crate::surface::{Curvature, Surface};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -170,7 +170,11 @@ impl SurfaceMesh {
     /// then, from the largest bound down, probes are snapped in batches
     /// until the next bound is no larger than the largest distance
     /// snapped. No probe left can be farther: the answer is the certified
-    /// maximum, as if every probe were snapped.
+    /// maximum, as if every probe were snapped. The few snaps search an
+    /// index of whole patches ([`crate::snap::FewSnaps`]), built before
+    /// them: the full index, built by the first of them inside the
+    /// parallel loop, took most of the check (bunny00 at 0.3% on two
+    /// threads: 2.3 s for the check, 0.8 s now).
     pub fn snap_deviation(&self, surface: &Surface) -> Result<f64> {
         let probes = self.probes(surface.net());
         let mut bounds: Vec<(f64, usize)> = probes
@@ -184,16 +188,18 @@ impl SurfaceMesh {
             .collect();
         bounds.par_sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         let mut worst: f64 = 0.0;
+        let mut snaps = None;
         for batch in bounds.chunks(SNAP_BATCH) {
             if batch[0].0 <= worst {
                 break;
             }
+            let snaps = snaps.get_or_insert_with(|| FewSnaps::new(surface));
             let snapped = batch
                 .par_iter()
                 .filter(|&&(bound, _)| bound > worst)
                 .map(|&(_, i)| {
                     let (x, (tri, v, w)) = probes[i];
-                    Ok(snap_near(surface, x, tri as usize, v, w)?.distance)
+                    Ok(snaps.snap_near(x, tri as usize, v, w)?.distance)
                 })
                 .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
             worst = worst.max(snapped);

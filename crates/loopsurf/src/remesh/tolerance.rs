@@ -3,6 +3,8 @@
 //! sizes of the control triangles there shrunk for the next round.
 
 use super::remeshing::Remeshing;
+use crate::parameters::SurfacePoint;
+use crate::snap::FewSnaps;
 use crate::topology::NONE;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -26,7 +28,8 @@ pub(super) fn chord_errors(work: &Remeshing, tolerance: f64) -> Vec<(Vec<u32>, f
             edge.into_iter().chain(tri)
         })
         .collect();
-    probes
+    let surface = work.placer.surface;
+    let mut measured: Vec<(DVec3, SurfacePoint, f64)> = probes
         .par_iter()
         .map(|(h, ids)| {
             let x = ids
@@ -41,17 +44,27 @@ pub(super) fn chord_errors(work: &Remeshing, tolerance: f64) -> Vec<(Vec<u32>, f
                 .find(|v| v.is_free())
                 .map(|v| v.at)
                 .unwrap_or_else(|| work.placer.guess_in(&work.vertices[ids[0] as usize], face));
-            let surface = work.placer.surface;
-            let mut d = crate::snap::project(surface, x, guess.tri as usize, guess.v, guess.w)
+            let d = crate::snap::project(surface, x, guess.tri as usize, guess.v, guess.w)
                 .map_or(f64::INFINITY, |s| s.distance);
-            if d > tolerance {
-                // A local minimum may be the wrong one (across a fold or a
-                // crease): the certified snap decides.
-                d = crate::snap::snap_near(surface, x, guess.tri as usize, guess.v, guess.w)
+            (x, guess, d)
+        })
+        .collect();
+    // A local minimum may be the wrong one (across a fold or a crease):
+    // where it misses, the certified snap decides.
+    if measured.iter().any(|m| m.2 > tolerance) {
+        let snaps = FewSnaps::new(surface);
+        measured.par_iter_mut().for_each(|(x, at, d)| {
+            if *d > tolerance {
+                *d = snaps
+                    .snap_near(*x, at.tri as usize, at.v, at.w)
                     .map_or(f64::INFINITY, |s| s.distance);
             }
-            (ids.clone(), d)
-        })
+        });
+    }
+    probes
+        .into_iter()
+        .zip(measured)
+        .map(|((_, ids), m)| (ids, m.2))
         .collect()
 }
 

@@ -119,11 +119,24 @@ impl SnapIndex {
     /// whole's, so that K parts hold about what the whole would (a part
     /// cut for its own size would take finer cells than the whole).
     pub(crate) fn over(surface: &Surface, only: Option<&[bool]>, size: usize) -> SnapIndex {
+        let (level, deep) = cutting(size);
+        Self::cut(surface, only, level, deep)
+    }
+
+    /// The index of every patch uncut, its containers from the net's own
+    /// twice-refined points: the quickest to build, for a few queries
+    /// ([`super::FewSnaps`]).
+    pub(crate) fn whole_patches(surface: &Surface) -> SnapIndex {
+        Self::cut(surface, None, 0, 0)
+    }
+
+    /// The index of the patches `only` marks, cut into cells `level`
+    /// times, their containers from the pieces `deep` steps down.
+    fn cut(surface: &Surface, only: Option<&[bool]>, level: u32, deep: u32) -> SnapIndex {
         let net = surface.net();
         let nt = net.triangles().len();
         // Every cell below reads its patches.
         surface.evaluator().make_all();
-        let (level, deep) = cutting(size);
         // The net refined `deep`, `deep` + 1 and `deep` + 2 times.
         let mut cut: Option<Level> = None;
         for _ in 0..deep {

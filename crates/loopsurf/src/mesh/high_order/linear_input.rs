@@ -145,6 +145,7 @@ fn snap_vertices(
     points: &[DVec3],
     limit: &MoveLimit,
 ) -> Result<(Vec<SurfacePoint>, Vec<DVec3>)> {
+    crate::snap::build_index(surface);
     let snaps = points
         .par_iter()
         .map(|&p| closest_point(surface, p))
@@ -172,6 +173,7 @@ fn triangle_faces(
     params: &[SurfacePoint],
 ) -> Result<Vec<u32>> {
     let face_of = surface.model().face_of_triangle();
+    crate::snap::build_index(surface);
     triangles
         .par_iter()
         .map(|tri| {

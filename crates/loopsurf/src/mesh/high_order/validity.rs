@@ -115,6 +115,7 @@ impl CurvedMesh {
             .iter()
             .map(|&[x, y]| basis(self.order, x, y))
             .collect();
+        crate::snap::build_index(surface);
         let worst = (0..self.len())
             .into_par_iter()
             .map(|t| {
