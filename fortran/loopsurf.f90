@@ -450,6 +450,15 @@ module loopsurf
             type(ls_remesh_options), intent(in) :: options
             type(c_ptr), intent(out) :: mesh
         end function
+        ! The parts worth remeshing in (options%parts ignored): one per
+        ! 30 000 triangles the sizes ask for, at most 64; 1 below 60 000.
+        integer(c_int) function ls_remesh_suggested_parts(surface, options, parts) &
+                bind(C, name="ls_remesh_suggested_parts")
+            import :: c_int, c_ptr, c_size_t, ls_remesh_options
+            type(c_ptr), value :: surface
+            type(ls_remesh_options), intent(in) :: options
+            integer(c_size_t), intent(out) :: parts
+        end function
         ! Remeshing in parts among ranks (ls_remesh_job, see the C header):
         ! every rank makes a job, then until done runs its tasks of the
         ! stage, sends their bytes to every rank (MPI_Allgatherv) and

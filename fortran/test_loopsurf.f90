@@ -308,6 +308,14 @@ program test_loopsurf
         ro%size = 1d-4
         call check(loopsurf_remesh(surf, ro, rx, rt, rtri, rvw, rface, dev) == LS_ERR_OVER_BUDGET, &
             "remesh: over the budget")
+        ! The parts worth remeshing in: whole at this net's size.
+        block
+            integer(c_size_t) :: parts
+            parts = 99
+            ro%size = 0.3d0
+            call check(ls_remesh_suggested_parts(surf, ro, parts) == LS_OK, "suggested parts")
+            call check(parts == 1_c_size_t, "suggested parts: whole")
+        end block
         ! A remeshed mesh handle to a file, and a file name it refuses.
         block
             type(c_ptr) :: handle

@@ -974,6 +974,17 @@ int ls_remesh_options_default(ls_remesh_options *options);
 // gives its edges along the curves.
 int ls_remesh(const ls_surface *surface, const ls_remesh_options *options, ls_trimesh **mesh);
 
+// The number of parts worth remeshing in with `options` (their `parts`
+// ignored): one per 30 000 triangles the sizes ask for over the whole
+// surface, at most 64 and with at least 16 control triangles each; 1,
+// whole, below 60 000. `loopsurf mesh` remeshes
+// in that many unless told. It depends on the surface and the options
+// alone, never on the threads, so the mesh is the same on any machine.
+// `options` may be NULL for the defaults. On success `*parts` is written.
+int ls_remesh_suggested_parts(const ls_surface *surface,
+                              const ls_remesh_options *options,
+                              size_t *parts);
+
 // Starts remeshing `surface` in `options->parts` parts as rank `rank` of
 // `ranks` (0 ≤ rank < ranks), and writes the job to `*job`, to be
 // released with `ls_remesh_job_free`. Every rank makes its job with the

@@ -1009,6 +1009,19 @@ static void test_remesh(const char* data_dir) {
     CHECK(memcmp(m2.xyz, m.xyz, 3 * m.nv * sizeof *m.xyz) == 0);
     ls_trimesh_free(two);
     ls_trimesh_free(mesh);
+    /* The parts worth remeshing in: whole here, at any size, for the
+       octahedron's 8 control triangles (each part takes 16 at least). */
+    size_t suggested = 99;
+    EXPECT(ls_remesh_suggested_parts(surface, NULL, &suggested), LS_OK);
+    CHECK(suggested == 1);
+    ls_remesh_options fine;
+    EXPECT(ls_remesh_options_default(&fine), LS_OK);
+    fine.tolerance = 0;
+    fine.adapt_curvature = 0;
+    fine.size = 0.004;
+    suggested = 99;
+    EXPECT(ls_remesh_suggested_parts(surface, &fine, &suggested), LS_OK);
+    CHECK(suggested == 1);
     /* A caller compiled before `parts` existed: the struct ends at
        max_triangles, and it gets one part. */
     ls_remesh_options older = o;
@@ -1101,6 +1114,27 @@ static void test_remesh(const char* data_dir) {
     double diag = diagonal(points, ncv);
     CHECK(diag > 0);
     check_remesh(surface, 0.03 * diag, diag);
+    /* fandisk's parts: whole by default, more for a fine size (one per
+       30 000 triangles: 0.2% asks for about 1.3 million), never fewer
+       for a finer one; `parts` in the options ignored; the output
+       untouched on a refusal. */
+    size_t parts = 99, finer = 99, kept = 99;
+    EXPECT(ls_remesh_suggested_parts(surface, NULL, &parts), LS_OK);
+    CHECK(parts == 1);
+    EXPECT(ls_remesh_options_default(&fine), LS_OK);
+    fine.tolerance = 0;
+    fine.adapt_curvature = 0;
+    fine.size = 0.004 * diag;
+    fine.parts = 0;
+    EXPECT(ls_remesh_suggested_parts(surface, &fine, &parts), LS_OK);
+    CHECK(parts >= 4 && parts <= 64);
+    fine.size = 0.002 * diag;
+    EXPECT(ls_remesh_suggested_parts(surface, &fine, &finer), LS_OK);
+    CHECK(finer > parts && finer <= 64);
+    fine.size = -1;
+    EXPECT(ls_remesh_suggested_parts(surface, &fine, &kept), LS_ERR_INVALID_ARGUMENT);
+    CHECK(kept == 99);
+    EXPECT(ls_remesh_suggested_parts(surface, NULL, NULL), LS_ERR_NULL_POINTER);
     ls_free_array(points);
     ls_free_array(control);
     ls_surface_free(surface);

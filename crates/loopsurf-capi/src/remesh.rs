@@ -104,6 +104,32 @@ pub unsafe extern "C" fn ls_remesh(
     })
 }
 
+/// The number of parts worth remeshing in with `options` (their `parts`
+/// ignored): one per 30 000 triangles the sizes ask for over the whole
+/// surface, at most 64 and with at least 16 control triangles each; 1,
+/// whole, below 60 000. `loopsurf mesh` remeshes
+/// in that many unless told. It depends on the surface and the options
+/// alone, never on the threads, so the mesh is the same on any machine.
+/// `options` may be NULL for the defaults. On success `*parts` is written.
+#[no_mangle]
+pub unsafe extern "C" fn ls_remesh_suggested_parts(
+    surface: *const ls_surface,
+    options: *const ls_remesh_options,
+    parts: *mut usize,
+) -> c_int {
+    run("ls_remesh_suggested_parts", || {
+        let surface = &input(surface, "surface")?.0;
+        let o = ls_remesh_options {
+            parts: 1,
+            ..read_options(options, "options")?
+        };
+        let out = output(parts, "parts")?;
+        let k = remesher(surface, &o)?.suggested_parts()?;
+        *out = k;
+        Ok(())
+    })
+}
+
 /// The remesher `o` describes, its values checked.
 pub(crate) fn remesher<'a>(
     surface: &'a Surface,

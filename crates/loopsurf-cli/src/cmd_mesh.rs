@@ -55,8 +55,11 @@ pub struct Args {
     /// Remesh in K parts of the control net (METIS), each on its own
     /// core, joined along the interfaces meshed first; the mesh is the
     /// same for any thread count (RAYON_NUM_THREADS). 1 remeshes whole.
-    #[arg(long, value_name = "K", default_value_t = 1, conflicts_with = "charts")]
-    parts: usize,
+    /// Default: one part per 30 000 triangles the sizes ask for (at most
+    /// 64, each of at least 16 control triangles), whole below 60 000;
+    /// the summary says how many.
+    #[arg(long, value_name = "K", conflicts_with = "charts")]
+    parts: Option<usize>,
     /// Skip the max–min angle edge swaps (--charts).
     #[arg(long)]
     no_swaps: bool,
@@ -90,8 +93,8 @@ pub fn run(args: Args) -> Result<(), Error> {
     let surface = args.surface.build(&net)?;
     let start = Instant::now();
     let charts = args.charts || args.uniform.is_some();
-    let mesh = if charts {
-        chart_mesh(&args, &surface)?
+    let (mesh, parts) = if charts {
+        (chart_mesh(&args, &surface)?, 1)
     } else {
         remesh(&args, &surface)?
     };
@@ -130,6 +133,13 @@ pub fn run(args: Args) -> Result<(), Error> {
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
         summary(out, &mesh, &times, snapped)?;
+        if parts > 1 {
+            let how = match args.parts {
+                Some(_) => "as --parts asks",
+                None => "one per 30 000 triangles the sizes ask for; --parts 1 remeshes whole",
+            };
+            writeln!(out, "parts: {parts} ({how})")?;
+        }
         writeln!(
             out,
             "crossings: {}",
@@ -148,13 +158,12 @@ pub fn run(args: Args) -> Result<(), Error> {
 
 /// The quality remesher's mesh, with a spinner. With no density at all,
 /// the curvature-adaptive mesh at the default tolerance: the mesh a user
-/// asking for "a mesh" expects.
-fn remesh(args: &Args, surface: &Surface) -> Result<SurfaceMesh, Error> {
+/// asking for "a mesh" expects. Also the number of parts it was made in.
+fn remesh(args: &Args, surface: &Surface) -> Result<(SurfaceMesh, usize), Error> {
     let adapt = args.adapt.is_some() || (args.size.is_none() && args.tolerance.is_none());
     let mut remesher = Remesher::new(surface)
         .adapt_curvature(adapt)
-        .gradation(args.gradation)
-        .parts(args.parts);
+        .gradation(args.gradation);
     if let Some(h) = args.size {
         remesher = remesher.size(h);
     }
@@ -164,6 +173,11 @@ fn remesh(args: &Args, surface: &Surface) -> Result<SurfaceMesh, Error> {
     if let Some(n) = args.max_triangles {
         remesher = remesher.max_triangles(n);
     }
+    let parts = match args.parts {
+        Some(k) => k,
+        None => remesher.suggested_parts()?,
+    };
+    remesher = remesher.parts(parts);
     let spinner = ProgressBar::new_spinner().with_message("remeshing");
     spinner.enable_steady_tick(std::time::Duration::from_millis(200));
     let mesh = remesher.run()?;
@@ -181,7 +195,7 @@ fn remesh(args: &Args, surface: &Surface) -> Result<SurfaceMesh, Error> {
             );
         }
     }
-    Ok(mesh)
+    Ok((mesh, parts))
 }
 
 /// Where the time went, in seconds from the start of meshing: the

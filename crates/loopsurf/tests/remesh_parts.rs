@@ -199,3 +199,33 @@ fn zero_parts_are_refused() {
         .unwrap_err();
     assert!(err.to_string().contains("parts"), "{err}");
 }
+
+/// The suggested number of parts is what the mesh it leads to holds: one
+/// part per `TRIANGLES_PER_PART` triangles of the finished mesh, within
+/// the estimate's slack (the sizes' areas before grading, on the control
+/// net's area); whole below two parts' worth; the cap past it.
+#[test]
+fn suggested_parts_follow_the_size_of_the_mesh() {
+    use loopsurf::remesh::{MAX_SUGGESTED_PARTS, TRIANGLES_PER_PART};
+    let e = loopsurf::examples::by_name("viking").unwrap();
+    let net = ControlNet::from_arrays(e.points, &e.tris).unwrap();
+    let surface = Surface::new(&net).unwrap();
+    let diagonal = net.bbox_diagonal();
+    for relative in [0.01, 0.005, 0.003] {
+        let remesher = Remesher::new(&surface).size(relative * diagonal);
+        let k = remesher.suggested_parts().unwrap();
+        let made = remesher.parts(k).run().unwrap().triangles.len() as f64;
+        let per_part = made / TRIANGLES_PER_PART;
+        if per_part < 1.5 {
+            assert_eq!(k, 1, "h = {relative}: {made} triangles, {k} parts");
+        } else {
+            // Whole parts: the count rounds down.
+            assert!(
+                (k as f64 - per_part).abs() <= 0.25 * per_part + 1.0,
+                "h = {relative}: {made} triangles, {k} parts"
+            );
+        }
+    }
+    let tiny = Remesher::new(&surface).size(1e-3 * diagonal);
+    assert_eq!(tiny.suggested_parts().unwrap(), MAX_SUGGESTED_PARTS);
+}

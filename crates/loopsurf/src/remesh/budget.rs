@@ -4,8 +4,10 @@
 //! as they go.
 
 use super::remeshing::Remeshing;
+use super::sizing::Sizing;
 use crate::error::Error;
 use crate::geometry::area;
+use crate::ControlNet;
 use crate::Result;
 use rayon::prelude::*;
 
@@ -19,6 +21,26 @@ const EDGES_SHORT_BY: f64 = 1.2;
 /// 3× at the same size, the Viking at 1%: 75 840 against 24 752): its
 /// budget is this many times the remesher's.
 const START_BUDGET: usize = 4;
+
+/// The area of an equilateral triangle of side `h`.
+fn equilateral(h: f64) -> f64 {
+    0.25 * 3f64.sqrt() * h * h
+}
+
+/// About how many triangles `sizing` asks for over `net` before grading
+/// and any tolerance round: each control triangle's area over that of an
+/// equilateral triangle of its size, times [`EDGES_SHORT_BY`].
+pub(crate) fn expected_over_net(net: &ControlNet, sizing: &Sizing) -> f64 {
+    EDGES_SHORT_BY
+        * net
+            .triangles()
+            .par_iter()
+            .enumerate()
+            .map(|(t, tri)| {
+                area(tri.map(|v| net.points()[v as usize])) / equilateral(sizing.of_triangle(t))
+            })
+            .sum::<f64>()
+}
 
 /// The most triangles a remesh may build.
 #[derive(Debug, Clone, Copy)]
@@ -54,7 +76,7 @@ impl Budget {
     /// surface's) that asks for more triangles than the budget, before the
     /// start mesh is built.
     pub fn check_uniform(&self, area: f64, h: f64) -> Result<()> {
-        self.check(EDGES_SHORT_BY * area / (0.25 * 3f64.sqrt() * h * h))
+        self.check(EDGES_SHORT_BY * area / equilateral(h))
     }
 
     /// Refuses an `expected` count of triangles over the budget.
@@ -123,7 +145,7 @@ impl Remeshing<'_> {
                     let c = self.mesh.corners(h);
                     let p = c.map(|v| self.vertices[v as usize].x);
                     let s = c.iter().map(|&v| self.size[v as usize]).sum::<f64>() / 3.0;
-                    area(p) / (0.25 * 3f64.sqrt() * s * s)
+                    area(p) / equilateral(s)
                 })
                 .sum::<f64>()
     }

@@ -120,6 +120,18 @@ const GUARDED: usize = 2;
 /// Rounds of re-sizing where the measured chord error exceeds the tolerance.
 const TOLERANCE_ROUNDS: usize = 6;
 
+/// [`Remesher::suggested_parts`] gives one part per this many triangles
+/// the sizes ask for.
+pub const TRIANGLES_PER_PART: f64 = 30_000.0;
+
+/// The most parts [`Remesher::suggested_parts`] gives.
+pub const MAX_SUGGESTED_PARTS: usize = 64;
+
+/// [`Remesher::suggested_parts`] gives each part at least this many
+/// control triangles: a part's sub-net holds its neighbours' triangles
+/// too, which a smaller part would be mostly made of.
+pub const MIN_PART_TRIANGLES: usize = 16;
+
 /// A quality remesher of `surface`; configure it, then [`Remesher::run`].
 #[derive(Clone)]
 pub struct Remesher<'a> {
@@ -187,6 +199,34 @@ impl<'a> Remesher<'a> {
     pub fn parts(mut self, k: usize) -> Self {
         self.parts = k;
         self
+    }
+
+    /// The number of parts worth remeshing in ([`Remesher::parts`]): one
+    /// per [`TRIANGLES_PER_PART`] triangles the sizes ask for over the
+    /// whole surface (before grading and tolerance rounds), at most
+    /// [`MAX_SUGGESTED_PARTS`] and with at least [`MIN_PART_TRIANGLES`]
+    /// control triangles each; 1, whole, below two parts' worth. It
+    /// depends on the surface and the density alone, never on the
+    /// threads, so the mesh it leads to is the same on any machine.
+    ///
+    /// Why so many triangles a part: each part costs a sub-net, its sizes
+    /// and its share of the band remeshed twice, which small parts do
+    /// not earn back. On one thread, bunny00 at 0.3% of its diagonal
+    /// (249 000 triangles) took 1.07 to 1.13 times the whole run's time in
+    /// 2 to 16 parts and 1.30 times in 32 (one run each; 1.2 times in 8,
+    /// medians of 5, in another session); the Viking at 1% (21 000), 1.64
+    /// times in 8.
+    pub fn suggested_parts(&self) -> Result<usize> {
+        let (sizing, _, _) = self.sizing_on(self.surface)?;
+        let expected = budget::expected_over_net(self.surface.net(), &sizing);
+        let most =
+            MAX_SUGGESTED_PARTS.min(self.surface.net().triangles().len() / MIN_PART_TRIANGLES);
+        let parts = (expected / TRIANGLES_PER_PART).floor();
+        Ok(if parts < 2.0 {
+            1
+        } else {
+            (parts as usize).min(most).max(1)
+        })
     }
 
     /// The size field over `surface` (the whole surface, or one part's),

@@ -180,6 +180,14 @@ impl Sizing {
         }
     }
 
+    /// Control triangle t's size, before grading.
+    pub fn of_triangle(&self, t: usize) -> f64 {
+        match self {
+            Sizing::Uniform(h) => *h,
+            Sizing::Curvature { per_triangle, .. } => per_triangle[t],
+        }
+    }
+
     /// The chord tolerance that curvature sizing sizes under (model
     /// units); `None` for a uniform size.
     pub fn adapts_to(&self) -> Option<f64> {
