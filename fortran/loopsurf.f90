@@ -451,7 +451,8 @@ module loopsurf
             type(c_ptr), intent(out) :: mesh
         end function
         ! The parts worth remeshing in (options%parts ignored): one per
-        ! 30 000 triangles the sizes ask for, at most 64; 1 below 60 000.
+        ! 30 000 triangles the sizes ask for, at most 64 and each of at
+        ! least 16 control triangles; 1 below 60 000.
         integer(c_int) function ls_remesh_suggested_parts(surface, options, parts) &
                 bind(C, name="ls_remesh_suggested_parts")
             import :: c_int, c_ptr, c_size_t, ls_remesh_options
