@@ -29,17 +29,19 @@ fn equilateral(h: f64) -> f64 {
 
 /// About how many triangles `sizing` asks for over `net` before grading
 /// and any tolerance round: each control triangle's area over that of an
-/// equilateral triangle of its size, times [`EDGES_SHORT_BY`].
+/// equilateral triangle of its size, times [`EDGES_SHORT_BY`]. The terms
+/// are added in triangle order, not by rayon's reduction, whose order
+/// follows the threads: the count is the same bits on any thread count.
 pub(crate) fn expected_over_net(net: &ControlNet, sizing: &Sizing) -> f64 {
-    EDGES_SHORT_BY
-        * net
-            .triangles()
-            .par_iter()
-            .enumerate()
-            .map(|(t, tri)| {
-                area(tri.map(|v| net.points()[v as usize])) / equilateral(sizing.of_triangle(t))
-            })
-            .sum::<f64>()
+    let per_triangle: Vec<f64> = net
+        .triangles()
+        .par_iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            area(tri.map(|v| net.points()[v as usize])) / equilateral(sizing.of_triangle(t))
+        })
+        .collect();
+    EDGES_SHORT_BY * per_triangle.iter().sum::<f64>()
 }
 
 /// The most triangles a remesh may build.
