@@ -24,6 +24,7 @@ pub fn control_net(input: &ControlNet, size: f64) -> Result<ControlNet> {
     let surface = Surface::new(input)?;
     let mesh = Remesher::new(&surface)
         .size(size)
+        .lattice_start()
         .run()
         .map_err(|e| e.during("fit: remeshing the input's surface"))?;
     // A tagged input corner on a smooth or crease vertex is not implied by

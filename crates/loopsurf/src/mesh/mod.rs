@@ -6,6 +6,8 @@
 //! Each control triangle is cut in its own parameter domain (see
 //! [`pattern`]): its sides into as many segments as the finer of the two
 //! triangles sharing them, its interior into a lattice of its own level.
+//! (For the remesher's start only, long slivers are cut by their edges'
+//! lengths instead: see [`isotropic`].)
 //! Points on a control edge are computed once and shared by both sides, so
 //! the result is conforming and watertight wherever the net is. Every
 //! output triangle lies inside one control triangle (its *chart*), which is
@@ -28,6 +30,7 @@
 mod assemble;
 pub(crate) mod density;
 pub mod high_order;
+mod isotropic;
 pub mod labels;
 mod pattern;
 mod quality;
@@ -45,6 +48,7 @@ use crate::topology::NONE;
 use assemble::assemble;
 use density::{bend, edge_length, grade, level, level_for_tolerance};
 use glam::{DVec2, DVec3};
+use isotropic::Slivers;
 use pattern::{side_param, Pattern};
 use rayon::prelude::*;
 use rounds::{Cuts, Progress};
@@ -98,6 +102,7 @@ pub struct Mesher<'a> {
     adapt: bool,
     swaps: bool,
     max_triangles: usize,
+    isotropic_slivers: bool,
 }
 
 /// A triangulation of the limit surface.
@@ -163,6 +168,7 @@ impl<'a> Mesher<'a> {
             adapt: false,
             swaps: true,
             max_triangles: 200_000_000,
+            isotropic_slivers: false,
         }
     }
 
@@ -193,6 +199,14 @@ impl<'a> Mesher<'a> {
     /// Refuse to produce more triangles than this (default 200 million).
     pub fn max_triangles(mut self, max: usize) -> Self {
         self.max_triangles = max;
+        self
+    }
+
+    /// Cut slivers by their edges' lengths into well-shaped triangles
+    /// rather than into copies of themselves ([`isotropic`]): for the
+    /// remesher's start, whose triangles need not keep their charts' shape.
+    pub(crate) fn isotropic_slivers(mut self, on: bool) -> Self {
+        self.isotropic_slivers = on;
         self
     }
 
@@ -241,15 +255,29 @@ impl<'a> Mesher<'a> {
         let diagonal = surface.net().bbox_diagonal();
         let tolerance = relative.map(|r| r * diagonal);
         let corners = corner_points(surface)?;
-        let mut levels = self.start_levels(&corners, tolerance)?;
+        let lengths = edge_lengths(surface, &corners)?;
+        let mut levels = self.start_levels(&lengths, tolerance)?;
+        let slivers = if self.isotropic_slivers {
+            Slivers::find(topo, lengths)
+        } else {
+            Slivers::none(levels.len())
+        };
         grade(topo, &mut levels);
         let mut cuts = Cuts::new(topo.edges().len(), levels.len());
-        let mut cuts_per_edge = cuts.edge_levels(topo, &levels);
+        let mut cuts_per_edge = cuts.edge_levels(topo, &levels, &slivers);
         let counter = Progress::new(progress);
         for round in 0.. {
             self.check_budget(&levels, &cuts_per_edge)?;
             cuts.cut_edges(surface, &cuts_per_edge, &corners, tolerance)?;
-            cuts.cut_triangles(self, &levels, &cuts_per_edge, &corners, tolerance, &counter)?;
+            cuts.cut_triangles(
+                self,
+                &levels,
+                &cuts_per_edge,
+                &slivers,
+                &corners,
+                tolerance,
+                &counter,
+            )?;
             let Some(tol) = tolerance else { break };
             if !cuts.refine_where_missed(topo, tol, &mut levels, &cuts_per_edge) {
                 break;
@@ -262,7 +290,7 @@ impl<'a> Mesher<'a> {
                 )));
             }
             grade(topo, &mut levels);
-            cuts_per_edge = cuts.edge_levels(topo, &levels);
+            cuts_per_edge = cuts.edge_levels(topo, &levels, &slivers);
         }
         counter.finish();
         let (edge_cuts, tri_cuts) = cuts.into_cuts();
@@ -279,14 +307,9 @@ impl<'a> Mesher<'a> {
     /// Each control triangle's first level: from the density and, under a
     /// tolerance, from its curvature estimate ([`bend`]) — with curvature
     /// adaptation its own, else one edge length for the whole surface.
-    fn start_levels(
-        &self,
-        corners: &[(SurfacePoint, DVec3)],
-        tolerance: Option<f64>,
-    ) -> Result<Vec<u32>> {
+    fn start_levels(&self, lengths: &[f64], tolerance: Option<f64>) -> Result<Vec<u32>> {
         let surface = self.surface;
         let topo = surface.net().topology();
-        let lengths = edge_lengths(surface, corners)?;
         let longest = |t: usize| {
             topo.triangle_edges()[t]
                 .iter()
@@ -361,11 +384,23 @@ impl<'a> Mesher<'a> {
         tolerance: Option<f64>,
     ) -> Result<TriangleCut> {
         let surface = self.surface;
-        let params = pattern.params();
         let nb = pattern.boundary_len();
         let mut chart = surface.chart(t)?;
-        for p in &params[nb..] {
-            points.push(chart.point(p.x, p.y)?);
+        let cut = match pattern.isotropic {
+            true => isotropic::triangulate(&pattern, &points, |q| chart.point(q.x, q.y))?,
+            false => None,
+        };
+        let mut params = pattern.params();
+        let cut_tris = cut.map(|cut| {
+            params.truncate(nb);
+            params.extend(cut.params);
+            points.extend(cut.points);
+            cut.tris
+        });
+        if cut_tris.is_none() {
+            for p in &params[nb..] {
+                points.push(chart.point(p.x, p.y)?);
+            }
         }
         let mut chord = |ids: &[u32], points: &[DVec3], enough: f64| -> Result<f64> {
             let k = ids.len() as f64;
@@ -373,7 +408,8 @@ impl<'a> Mesher<'a> {
             let p = ids.iter().map(|&i| points[i as usize]).sum::<DVec3>() / k;
             chord_error(&mut chart, q, p, enough, tolerance.unwrap_or(0.0))
         };
-        let mut tris = pattern.triangles(&points);
+        let isotropic = cut_tris.is_some();
+        let mut tris = cut_tris.unwrap_or_else(|| pattern.triangles(&points));
         // The lattice repeats the chart's shape: its edges are already
         // max-min (Delaunay) unless the chart is obtuse, in which case the
         // whole chart is swapped; otherwise only the transition strips
@@ -382,7 +418,14 @@ impl<'a> Mesher<'a> {
         let [a, b, c] = pattern.corners().map(|i| points[i as usize]);
         let obtuse =
             (b - a).dot(c - a) < 0.0 || (a - b).dot(c - b) < 0.0 || (a - c).dot(b - c) < 0.0;
-        let swap_from = if obtuse { 0 } else { pattern.strip_start() };
+        // A sliver's cut is Delaunay in its plane already.
+        let swap_from = if isotropic {
+            tris.len()
+        } else if obtuse {
+            0
+        } else {
+            pattern.strip_start()
+        };
         if self.swaps && swap_from < tris.len() {
             let mut failure = None;
             let strips = &mut tris[swap_from..];

@@ -26,11 +26,14 @@ pub(crate) fn side_param(s: usize, t: f64) -> DVec2 {
 }
 
 /// The segment counts of one control triangle: per side, and its interior
-/// lattice level.
+/// lattice level; and whether it is a sliver cut by its edges' lengths
+/// instead ([`super::isotropic`], its spacing its longest side over the
+/// level).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Pattern {
     pub sides: [u32; 3],
     pub level: u32,
+    pub isotropic: bool,
 }
 
 impl Pattern {
@@ -235,7 +238,11 @@ mod tests {
                 [level, 0, 2 * level],
             ] {
                 let sides = [0, 1, 2].map(|s| level + extra[s]);
-                let p = Pattern { sides, level };
+                let p = Pattern {
+                    sides,
+                    level,
+                    isotropic: false,
+                };
                 let params = p.params();
                 let pos: Vec<DVec3> = params.iter().map(|q| q.extend(0.0)).collect();
                 let tris = p.triangles(&pos);

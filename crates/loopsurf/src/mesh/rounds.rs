@@ -3,6 +3,7 @@
 //! error is missed, so that each round recomputes only what it must.
 
 use super::density::{self, level};
+use super::isotropic::Slivers;
 use super::pattern::Pattern;
 use super::{boundary_points, cut_edge, finer, EdgeCut, Mesher, TriangleCut};
 use crate::error::Result;
@@ -74,15 +75,17 @@ impl Cuts {
         }
     }
 
-    /// The segments of each control edge: the finer level of its two
-    /// triangles, or its floor if finer still.
-    pub fn edge_levels(&self, topo: &Topology, levels: &[u32]) -> Vec<u32> {
+    /// The segments of each control edge: the more of the two its
+    /// triangles ask at their levels (a lattice triangle its level, a
+    /// sliver the edge's length at its spacing), or its floor if more
+    /// still.
+    pub fn edge_levels(&self, topo: &Topology, levels: &[u32], slivers: &Slivers) -> Vec<u32> {
         (0..self.edges.len())
             .map(|e| {
                 let pair = topo.edge_triangles()[e];
                 pair.iter()
                     .filter(|&&t| t != NONE)
-                    .map(|&t| levels[t as usize])
+                    .map(|&t| slivers.segments(t as usize, e, levels[t as usize]))
                     .max()
                     .unwrap_or(1)
                     .max(self.edge_floor[e])
@@ -127,6 +130,7 @@ impl Cuts {
         mesher: &Mesher,
         levels: &[u32],
         cuts_per_edge: &[u32],
+        slivers: &Slivers,
         corners: &[(SurfacePoint, DVec3)],
         tolerance: Option<f64>,
         progress: &Progress,
@@ -136,6 +140,7 @@ impl Cuts {
         let pattern_of = |t: usize| Pattern {
             sides: topo.triangle_edges()[t].map(|e| cuts_per_edge[e as usize]),
             level: levels[t],
+            isotropic: slivers.is_sliver(t),
         };
         let dirty: Vec<usize> = (0..self.triangles.len())
             .filter(|&t| {

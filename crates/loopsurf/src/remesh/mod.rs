@@ -142,6 +142,9 @@ pub struct Remesher<'a> {
     gradation: f64,
     max_triangles: usize,
     parts: usize,
+    /// Whether the start cuts slivers by their edges' lengths
+    /// ([`start::chart_mesh`]).
+    sliver_cuts: bool,
 }
 
 impl<'a> Remesher<'a> {
@@ -155,7 +158,19 @@ impl<'a> Remesher<'a> {
             gradation: DEFAULT_GRADATION,
             max_triangles: DEFAULT_MAX_TRIANGLES,
             parts: 1,
+            sliver_cuts: true,
         }
+    }
+
+    /// Starts from the chart mesh whose slivers are cut into copies of
+    /// themselves, as before slivers were cut by their edges' lengths: for
+    /// the fit, whose worst distances hang on where the remeshed net's
+    /// irregular vertices fall. From the sliver cuts, the fitted cone's
+    /// worst distance to the true cone grew from 6.0e-4 to 1.1e-3 of the
+    /// diagonal and the filleted box's from 1.5e-4 to 2.2e-4.
+    pub(crate) fn lattice_start(mut self) -> Self {
+        self.sliver_cuts = false;
+        self
     }
 
     /// The target edge length in model units (the cap, when adapting).
@@ -295,7 +310,13 @@ impl<'a> Remesher<'a> {
             1 => {
                 let (sizing, tolerance, budget) = self.sizing_on(self.surface)?;
                 let largest = sizing.largest(|_| true);
-                let chart = start::chart_mesh(self.surface, largest, sizing.adapts_to(), &budget)?;
+                let chart = start::chart_mesh(
+                    self.surface,
+                    largest,
+                    sizing.adapts_to(),
+                    &budget,
+                    self.sliver_cuts,
+                )?;
                 let placer = vertices::Placer::new(self.surface);
                 let mut work = start::start_from(placer, &chart)?;
                 let (deviation, _) = remesh(&mut work, &sizing, tolerance, &budget, None)?;

@@ -1,6 +1,8 @@
 //! The remesher's start: the chart mesher's mesh at the same density
 //! (conforming, with the crease chains as edge chains, and cheap), its
-//! vertices given their kinds from its curve edges and the model's corners.
+//! slivers cut into well-shaped triangles rather than copies of
+//! themselves, its vertices given their kinds from its curve edges and
+//! the model's corners.
 
 use super::budget::Budget;
 use super::connectivity::Connectivity;
@@ -15,7 +17,9 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// The chart mesh at size `largest` (the largest the size field asks
-/// for). Under curvature sizing (`adapt_to`, its chord tolerance in model
+/// for), its long slivers cut by their edges' lengths into well-shaped
+/// triangles where `sliver_cuts`, not into copies of themselves. Under
+/// curvature sizing (`adapt_to`, its chord tolerance in model
 /// units) it starts adapted, unless the chart mesher cannot meet the
 /// tolerance (its own measure, in parameters, can stall where the
 /// remesher's sizes do not): then from the largest size alone.
@@ -24,11 +28,13 @@ pub(super) fn chart_mesh(
     largest: f64,
     adapt_to: Option<f64>,
     budget: &Budget,
+    sliver_cuts: bool,
 ) -> Result<SurfaceMesh> {
     let plain = Mesher::new(surface)
         .density(Density::Size(largest))
         .max_triangles(budget.start_allowance())
-        .swaps(false);
+        .swaps(false)
+        .isotropic_slivers(sliver_cuts);
     match adapt_to {
         Some(tol) => {
             let diagonal = surface.net().bbox_diagonal();

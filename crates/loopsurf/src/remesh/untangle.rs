@@ -25,6 +25,10 @@
 //! Where pairs are left, a second stage lifts
 //! the angle floor for vertices on a fold of the surface under a chord
 //! tolerance: the triangles there are as poor as the fold makes them.
+//! A third lifts it everywhere, for a removal or flip that leaves no
+//! crossing around it: at mech-holes-shark's fin, where the net folds
+//! back by 172°, a vertex whose removal cleared 8 pairs made a 0.3°
+//! triangle and the other stages kept it (10 pairs left, none after).
 //! Where the surface itself crosses, no removal helps; those pairs stay,
 //! and the caller hears of them.
 //!
@@ -82,22 +86,27 @@ impl Remeshing<'_> {
     pub fn untangle(&mut self, tolerance: Option<f64>) -> f64 {
         // First with the angle floor everywhere; then, for what is left,
         // without it on folds (see [`Remeshing::on_fold`]), under a
-        // tolerance. In that order mech-holes-shark keeps 4 pairs at its
-        // fin; 15 with the floor everywhere, 28 with it lifted on folds
-        // from the start (joint.off: 7, 0 and 0).
-        // A clean mesh is searched once.
-        let (strict, left) = self.untangle_rounds(tolerance, false);
-        if left == 0 || tolerance.is_none() {
-            return strict;
+        // tolerance; then without it anywhere, for removals that clear
+        // every crossing around them. With the first two stages alone,
+        // mech-holes-shark kept 4 pairs at its fin; 15 with the floor
+        // everywhere, 28 with it lifted on folds from the start (joint.off:
+        // 7, 0 and 0). A clean mesh is searched once.
+        let mut worst: f64 = 0.0;
+        for floor in [Floor::Everywhere, Floor::OffFolds, Floor::Nowhere] {
+            let (made, left) = self.untangle_rounds(tolerance, floor);
+            worst = worst.max(made);
+            if left == 0 || tolerance.is_none() {
+                break;
+            }
         }
-        strict.max(self.untangle_rounds(tolerance, true).0)
+        worst
     }
 
-    /// Rounds of [`Remeshing::untangle`], the angle floor lifted on folds
-    /// if `on_folds`: the largest chord error of a triangle made, and how
+    /// Rounds of [`Remeshing::untangle`], the angle floor kept where
+    /// `floor` says: the largest chord error of a triangle made, and how
     /// many pairs the last search found (more may be left where its
     /// round removed none).
-    fn untangle_rounds(&mut self, tolerance: Option<f64>, on_folds: bool) -> (f64, usize) {
+    fn untangle_rounds(&mut self, tolerance: Option<f64>, floor: Floor) -> (f64, usize) {
         let mut worst: f64 = 0.0;
         let mut left = 0;
         for _ in 0..ROUNDS {
@@ -126,7 +135,7 @@ impl Remeshing<'_> {
                 if busy.contains(&v) || !self.mesh.is_vertex_alive(v) {
                     continue;
                 }
-                if let Some((h, chord)) = self.best_removal(v, &near, tolerance, on_folds) {
+                if let Some((h, chord)) = self.best_removal(v, &near, tolerance, floor) {
                     let mut ring = Vec::new();
                     self.mesh.neighbours(v, &mut ring);
                     busy.extend(ring);
@@ -136,7 +145,7 @@ impl Remeshing<'_> {
                 }
             }
             if removed == 0 {
-                removed = self.flip_crossings(&near, tolerance, on_folds);
+                removed = self.flip_crossings(&near, tolerance, floor);
             }
             if removed == 0 {
                 break;
@@ -154,12 +163,12 @@ impl Remeshing<'_> {
         v: u32,
         near: &Near,
         tolerance: Option<f64>,
-        on_folds: bool,
+        floor: Floor,
     ) -> Option<(u32, f64)> {
         let outgoing: Vec<u32> = self.mesh.outgoing(v).collect();
         let old: HashSet<u32> = outgoing.iter().map(|&e| e / 3).collect();
         let before = near.before(&old);
-        let floor = if on_folds && self.on_fold(v) {
+        let least = if self.lifted(floor, &[v]) {
             f64::INFINITY
         } else {
             LEAST_COSINE
@@ -175,7 +184,7 @@ impl Remeshing<'_> {
                 continue;
             };
             let after = near.after(self, &new, &old);
-            if after >= before {
+            if after >= before || (matches!(floor, Floor::Nowhere) && after > 0) {
                 continue;
             }
             // The smallest angle's cosine (larger is worse): a removal
@@ -186,7 +195,7 @@ impl Remeshing<'_> {
             };
             let quality = worst_of(&mut new.iter().copied());
             let before_quality = worst_of(&mut outgoing.iter().map(|&e| self.mesh.corners(e)));
-            if quality > before_quality.max(floor) {
+            if quality > before_quality.max(least) {
                 continue;
             }
             if best.map_or(true, |b| (after, quality) < (b.0, b.1)) {
@@ -395,7 +404,7 @@ impl Remeshing<'_> {
     /// Flips edges of crossing triangles where the two new triangles cross
     /// fewer others than the two old ones did, under the conditions of a
     /// removal (see the module doc). Returns how many.
-    fn flip_crossings(&mut self, near: &Near, tolerance: Option<f64>, on_folds: bool) -> usize {
+    fn flip_crossings(&mut self, near: &Near, tolerance: Option<f64>, floor: Floor) -> usize {
         let mut slots: Vec<u32> = near.per_slot.keys().copied().collect();
         slots.sort_unstable();
         let mut busy: HashSet<u32> = HashSet::new();
@@ -422,10 +431,10 @@ impl Remeshing<'_> {
                     continue;
                 };
                 let after = near.after(self, &new, &old);
-                if after >= before {
+                if after >= before || (matches!(floor, Floor::Nowhere) && after > 0) {
                     continue;
                 }
-                let floor = if on_folds && [a, b, c, d].iter().any(|&v| self.on_fold(v)) {
+                let least = if self.lifted(floor, &[a, b, c, d]) {
                     f64::INFINITY
                 } else {
                     LEAST_COSINE
@@ -436,7 +445,7 @@ impl Remeshing<'_> {
                     self.worst_cosine(new[0], None)
                         .max(self.worst_cosine(new[1], None)),
                 );
-                if now > was.max(floor) {
+                if now > was.max(least) {
                     continue;
                 }
                 self.mesh.flip(h);
@@ -457,6 +466,16 @@ impl Remeshing<'_> {
             .filter(|&(y, z)| y != keep && z != keep)
             .map(|(y, z)| ([keep, y, z], [v, y, z]))
             .unzip()
+    }
+
+    /// Whether `floor` lifts the angle floor for a change moving vertices
+    /// `vs`.
+    fn lifted(&self, floor: Floor, vs: &[u32]) -> bool {
+        match floor {
+            Floor::Everywhere => false,
+            Floor::OffFolds => vs.iter().any(|&v| self.on_fold(v)),
+            Floor::Nowhere => true,
+        }
     }
 
     /// Whether free vertex v sits on a fold of the surface: its normal and
@@ -526,6 +545,21 @@ impl Remeshing<'_> {
         }
         Some(worst)
     }
+}
+
+/// Where a round of [`Remeshing::untangle`] keeps its angle floor (no
+/// angle made below both 20° and the worst replaced).
+#[derive(Clone, Copy)]
+enum Floor {
+    Everywhere,
+    /// Lifted on folds of the surface ([`Remeshing::on_fold`]).
+    OffFolds,
+    /// Lifted everywhere, but only for a removal or flip whose triangles
+    /// cross none at all: a thin triangle is a poor element, a crossing
+    /// one a surface no volume mesher takes, and where the surface itself
+    /// crosses (anchor.off's fans) a removal that only thins the pairs
+    /// buys nothing and left a 0.15° triangle.
+    Nowhere,
 }
 
 /// Whether triangle `tri` has a corner in `dirty`, or there is no such

@@ -306,7 +306,13 @@ impl<'a> PartsJob<'a> {
         }
         let surface = self.remesher.surface;
         let (adapt_to, budget) = self.remesher.settings()?;
-        let chart = start::chart_mesh(surface, largest, adapt_to, &budget)?;
+        let chart = start::chart_mesh(
+            surface,
+            largest,
+            adapt_to,
+            &budget,
+            self.remesher.sliver_cuts,
+        )?;
         let owner: Vec<u32> = chart
             .charts
             .iter()
