@@ -15,7 +15,7 @@
 //! Delaunay triangulation (spade's). A strip narrower than the spacing is
 //! then one row of triangles between its long sides.
 
-use super::pattern::{side_param, Pattern};
+use super::pattern::Pattern;
 use crate::error::Result;
 use crate::topology::Topology;
 use glam::{DVec2, DVec3};
@@ -189,36 +189,28 @@ pub(super) fn triangulate(
     }
     // A tiling of a polygon of nb sides holding ni points has nb + 2 ni − 2
     // triangles; its triangles keep their orientation in (v, w).
-    let mut all = pattern_boundary(pattern);
-    all.extend(&params);
-    let tiles = tris.len() == nb + 2 * params.len() - 2
+    let interior = params.len();
+    let mut all = pattern.boundary_params();
+    all.extend(params);
+    let tiles = tris.len() == nb + 2 * interior - 2
         && tris.iter().all(|t| {
             let [p, q, r] = t.map(|i| all[i as usize]);
             (q - p).perp_dot(r - p) > 0.0
         });
     Ok(tiles.then_some(Cut {
-        params,
+        params: all,
         points,
         tris,
     }))
 }
 
-/// A sliver's cut ([`triangulate`]): its interior points' parameters and
-/// limit points, and its triangles over the boundary and interior points.
+/// A sliver's cut ([`triangulate`]): the parameters of its boundary and
+/// interior points, its interior points' limit points, and its triangles
+/// over both.
 pub(super) struct Cut {
     pub params: Vec<DVec2>,
     pub points: Vec<DVec3>,
     pub tris: Vec<[u32; 3]>,
-}
-
-/// The parameters of a pattern's boundary points, side by side.
-fn pattern_boundary(pattern: &Pattern) -> Vec<DVec2> {
-    (0..3)
-        .flat_map(|s| {
-            let n = pattern.sides[s];
-            (0..n).map(move |k| side_param(s, k as f64 / n as f64))
-        })
-        .collect()
 }
 
 /// Whether `p` lies inside the triangle (0, b, c) at least `margin` from
@@ -276,11 +268,9 @@ mod tests {
         let x = |q: DVec2| {
             corners[0] + q.x * (corners[1] - corners[0]) + q.y * (corners[2] - corners[0])
         };
-        let boundary: Vec<DVec3> = pattern_boundary(&pattern).into_iter().map(x).collect();
+        let boundary: Vec<DVec3> = pattern.boundary_params().into_iter().map(x).collect();
         let cut = triangulate(&pattern, &boundary, |q| Ok(x(q))).unwrap()?;
-        let mut params = pattern_boundary(&pattern);
-        params.extend(&cut.params);
-        Some((params, cut))
+        Some((cut.params.clone(), cut))
     }
 
     /// A strip 3 long and 0.04 wide, and a wide sliver, cut by their sides'

@@ -390,18 +390,19 @@ impl<'a> Mesher<'a> {
             true => isotropic::triangulate(&pattern, &points, |q| chart.point(q.x, q.y))?,
             false => None,
         };
-        let mut params = pattern.params();
-        let cut_tris = cut.map(|cut| {
-            params.truncate(nb);
-            params.extend(cut.params);
-            points.extend(cut.points);
-            cut.tris
-        });
-        if cut_tris.is_none() {
-            for p in &params[nb..] {
-                points.push(chart.point(p.x, p.y)?);
+        let (params, cut_tris) = match cut {
+            Some(cut) => {
+                points.extend(cut.points);
+                (cut.params, Some(cut.tris))
             }
-        }
+            None => {
+                let params = pattern.params();
+                for p in &params[nb..] {
+                    points.push(chart.point(p.x, p.y)?);
+                }
+                (params, None)
+            }
+        };
         let mut chord = |ids: &[u32], points: &[DVec3], enough: f64| -> Result<f64> {
             let k = ids.len() as f64;
             let q = ids.iter().map(|&i| params[i as usize]).sum::<DVec2>() / k;

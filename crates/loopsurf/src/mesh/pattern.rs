@@ -87,13 +87,20 @@ impl Pattern {
         out
     }
 
-    /// Parameters of every local point: boundary, then interior.
-    pub fn params(&self) -> Vec<DVec2> {
+    /// Parameters of the boundary points, side by side from each side's
+    /// start corner.
+    pub fn boundary_params(&self) -> Vec<DVec2> {
         let mut out = Vec::with_capacity(self.boundary_len() + self.interior_len());
         for s in 0..3 {
             let n = self.sides[s];
             out.extend((0..n).map(|k| side_param(s, k as f64 / n as f64)));
         }
+        out
+    }
+
+    /// Parameters of every local point: boundary, then interior.
+    pub fn params(&self) -> Vec<DVec2> {
+        let mut out = self.boundary_params();
         out.extend(self.interior_params());
         debug_assert_eq!(out.len(), self.boundary_len() + self.interior_len());
         out

@@ -163,9 +163,9 @@ impl<'a> Remesher<'a> {
     }
 
     /// Starts from the chart mesh whose slivers are cut into copies of
-    /// themselves, as before slivers were cut by their edges' lengths: for
-    /// the fit, whose worst distances hang on where the remeshed net's
-    /// irregular vertices fall. From the sliver cuts, the fitted cone's
+    /// themselves, not by their edges' lengths: for the fit, whose worst
+    /// distances hang on where the remeshed net's irregular vertices
+    /// fall. From the sliver cuts, the fitted cone's
     /// worst distance to the true cone grew from 6.0e-4 to 1.1e-3 of the
     /// diagonal and the filleted box's from 1.5e-4 to 2.2e-4.
     pub(crate) fn lattice_start(mut self) -> Self {

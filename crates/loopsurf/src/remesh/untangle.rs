@@ -184,7 +184,7 @@ impl Remeshing<'_> {
                 continue;
             };
             let after = near.after(self, &new, &old);
-            if after >= before || (matches!(floor, Floor::Nowhere) && after > 0) {
+            if !floor.helps(before, after) {
                 continue;
             }
             // The smallest angle's cosine (larger is worse): a removal
@@ -431,7 +431,7 @@ impl Remeshing<'_> {
                     continue;
                 };
                 let after = near.after(self, &new, &old);
-                if after >= before || (matches!(floor, Floor::Nowhere) && after > 0) {
+                if !floor.helps(before, after) {
                     continue;
                 }
                 let least = if self.lifted(floor, &[a, b, c, d]) {
@@ -560,6 +560,15 @@ enum Floor {
     /// crosses (anchor.off's fans) a removal that only thins the pairs
     /// buys nothing and left a 0.15° triangle.
     Nowhere,
+}
+
+impl Floor {
+    /// Whether a change that leaves `after` crossings where there were
+    /// `before` may be made at all: fewer, and none with the floor lifted
+    /// everywhere.
+    fn helps(self, before: usize, after: usize) -> bool {
+        after < before && (after == 0 || !matches!(self, Floor::Nowhere))
+    }
 }
 
 /// Whether triangle `tri` has a corner in `dirty`, or there is no such
