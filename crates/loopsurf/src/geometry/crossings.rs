@@ -288,6 +288,9 @@ impl Box3 {
 /// Items per leaf of [`BoxTree`].
 const LEAF: usize = 4;
 
+/// Subtrees of more items than this are built on two threads.
+const SIDE_BY_SIDE: usize = 1 << 14;
+
 /// A bounding-box tree over boxes, split at the median of their centres
 /// along the longest side: nodes in depth-first order, each with its box
 /// and its range of `order` (a leaf) or its two children.
@@ -305,45 +308,90 @@ struct Node {
     second: usize,
 }
 
+/// The nodes over `order` (which start at item `start` of the whole
+/// order), each node's second child counted from the first node. The
+/// halves of a large subtree are built side by side and joined: every
+/// step is the one a serial build takes, so the tree is the same bits on
+/// any thread count (the union of boxes is exact in any order).
+fn subtree(boxes: &[Box3], order: &mut [usize], start: usize) -> Vec<Node> {
+    if order.len() <= SIDE_BY_SIDE {
+        let mut nodes = Vec::with_capacity(2 * order.len() / LEAF + 1);
+        build(boxes, order, start, &mut nodes);
+        return nodes;
+    }
+    let (bounds, mid) = split(boxes, order);
+    let (low, high) = order.split_at_mut(mid);
+    let (first, second) = rayon::join(
+        || subtree(boxes, low, start),
+        || subtree(boxes, high, start + mid),
+    );
+    let shift = 1 + first.len();
+    let mut nodes = Vec::with_capacity(shift + second.len());
+    nodes.push(Node {
+        bounds,
+        start,
+        end: start + order.len(),
+        second: shift,
+    });
+    let moved = |offset: usize| {
+        move |n: Node| Node {
+            second: if n.second == 0 { 0 } else { n.second + offset },
+            ..n
+        }
+    };
+    nodes.extend(first.into_iter().map(moved(1)));
+    nodes.extend(second.into_iter().map(moved(shift)));
+    nodes
+}
+
+/// [`subtree`] on one thread, pushed onto `nodes`; the index of its root.
+fn build(boxes: &[Box3], order: &mut [usize], start: usize, nodes: &mut Vec<Node>) -> usize {
+    let at = nodes.len();
+    let (bounds, mid) = split(boxes, order);
+    nodes.push(Node {
+        bounds,
+        start,
+        end: start + order.len(),
+        second: 0,
+    });
+    if order.len() > LEAF {
+        let (low, high) = order.split_at_mut(mid);
+        build(boxes, low, start, nodes);
+        nodes[at].second = build(boxes, high, start + mid, nodes);
+    }
+    at
+}
+
+/// The bounds of the boxes `order` names, and where a node over them
+/// splits: `order` rearranged about its median centre along the bounds'
+/// longest side (left as it is for a leaf).
+fn split(boxes: &[Box3], order: &mut [usize]) -> (Box3, usize) {
+    let bounds = order
+        .iter()
+        .map(|&i| boxes[i])
+        .reduce(|a, b| a.union(&b))
+        .unwrap_or(Box3 {
+            lo: DVec3::ZERO,
+            hi: DVec3::ZERO,
+        });
+    let mid = order.len() / 2;
+    if order.len() > LEAF {
+        let axis = largest_axis(bounds.hi - bounds.lo);
+        let centre = |i: &usize| boxes[*i].lo[axis] + boxes[*i].hi[axis];
+        order.select_nth_unstable_by(mid, |a, b| centre(a).total_cmp(&centre(b)));
+    }
+    (bounds, mid)
+}
+
 impl BoxTree {
     pub(crate) fn new(boxes: &[Box3]) -> BoxTree {
-        let mut tree = BoxTree {
-            order: (0..boxes.len()).collect(),
-            nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1),
+        let mut order: Vec<usize> = (0..boxes.len()).collect();
+        let nodes = if boxes.is_empty() {
+            Vec::new()
+        } else {
+            subtree(boxes, &mut order, 0)
         };
-        if !boxes.is_empty() {
-            tree.build(boxes, 0, boxes.len());
-        }
-        tree
-    }
-
-    fn build(&mut self, boxes: &[Box3], start: usize, end: usize) -> usize {
-        let bounds = self.order[start..end]
-            .iter()
-            .map(|&i| boxes[i])
-            .reduce(|a, b| a.union(&b))
-            .unwrap_or(Box3 {
-                lo: DVec3::ZERO,
-                hi: DVec3::ZERO,
-            });
-        let at = self.nodes.len();
-        self.nodes.push(Node {
-            bounds,
-            start,
-            end,
-            second: 0,
-        });
-        if end - start > LEAF {
-            let axis = largest_axis(bounds.hi - bounds.lo);
-            let centre = |i: &usize| boxes[*i].lo[axis] + boxes[*i].hi[axis];
-            let mid = (start + end) / 2;
-            self.order[start..end]
-                .select_nth_unstable_by(mid - start, |a, b| centre(a).total_cmp(&centre(b)));
-            self.build(boxes, start, mid);
-            let second = self.build(boxes, mid, end);
-            self.nodes[at].second = second;
-        }
-        at
+        BoxTree { order, nodes }
     }
 
     /// Calls `found` with every item whose box overlaps `query`.

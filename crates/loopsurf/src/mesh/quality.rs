@@ -82,19 +82,21 @@ impl SurfaceMesh {
     pub fn quality(&self) -> MeshQuality {
         let q = self.triangle_quality();
         let n = q.len().max(1) as f64;
-        let share = |limit: f64| q.iter().filter(|q| q.min_angle < limit).count() as f64 / n;
+        let share = |limit: f64| q.par_iter().filter(|q| q.min_angle < limit).count() as f64 / n;
         let mut edges: Vec<(u32, u32)> = self
             .triangles
-            .iter()
-            .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+            .par_iter()
+            .flat_map_iter(|t| {
+                (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])))
+            })
             .collect();
-        edges.sort_unstable();
+        edges.par_sort_unstable();
         edges.dedup();
         let mut lengths: Vec<f64> = edges
-            .iter()
+            .par_iter()
             .map(|&(a, b)| self.points[a as usize].distance(self.points[b as usize]))
             .collect();
-        lengths.sort_unstable_by(f64::total_cmp);
+        lengths.par_sort_unstable_by(f64::total_cmp);
         let at = |f: f64| {
             lengths
                 .get(((lengths.len().max(1) - 1) as f64 * f).round() as usize)
@@ -127,7 +129,7 @@ impl SurfaceMesh {
         }
         let cos_limit = limit.to_radians().cos();
         self.triangles
-            .iter()
+            .par_iter()
             .filter(|t| {
                 let p = t.map(|i| self.points[i as usize]);
                 // The corner with the smallest angle (largest cosine).
@@ -221,7 +223,7 @@ impl SurfaceMesh {
                 edges.push(((a.min(b) << 32) | a.max(b), t as u32, k as u8));
             }
         }
-        edges.sort_unstable();
+        edges.par_sort_unstable();
         edges.dedup_by_key(|e| e.0);
         let centroids = (0..self.triangles.len())
             .into_par_iter()

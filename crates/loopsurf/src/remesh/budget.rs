@@ -33,12 +33,25 @@ fn equilateral(h: f64) -> f64 {
 /// are added in triangle order, not by rayon's reduction, whose order
 /// follows the threads: the count is the same bits on any thread count.
 pub(crate) fn expected_over_net(net: &ControlNet, sizing: &Sizing) -> f64 {
+    expected_over(net, sizing, |_| true)
+}
+
+/// [`expected_over_net`] over the control triangles t with `keep(t)`.
+pub(crate) fn expected_over(
+    net: &ControlNet,
+    sizing: &Sizing,
+    keep: impl Fn(usize) -> bool + Sync,
+) -> f64 {
     let per_triangle: Vec<f64> = net
         .triangles()
         .par_iter()
         .enumerate()
         .map(|(t, tri)| {
-            area(tri.map(|v| net.points()[v as usize])) / equilateral(sizing.of_triangle(t))
+            if keep(t) {
+                area(tri.map(|v| net.points()[v as usize])) / equilateral(sizing.of_triangle(t))
+            } else {
+                0.0
+            }
         })
         .collect();
     EDGES_SHORT_BY * per_triangle.iter().sum::<f64>()

@@ -20,8 +20,10 @@ use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::partition;
+use crate::remesh::budget::expected_over;
 use crate::remesh::{start, Remesher};
 use crate::topology::NONE;
+use rayon::prelude::*;
 
 /// Remeshing in parts, stage by stage (see the module doc): make one with
 /// [`Remesher::parts_job`], then until [`PartsJob::is_done`], run the
@@ -63,6 +65,8 @@ struct FirstPass {
     /// Per chart vertex: itself where two parts share it, else [`NONE`].
     pins: Vec<u32>,
     shared: Vec<bool>,
+    /// Per part: the triangles its sizes ask for, what its task weighs.
+    weights: Vec<usize>,
 }
 
 /// A pass over some triangles of a mesh: those `owner` gives a part are
@@ -133,9 +137,10 @@ impl<'a> PartsJob<'a> {
     }
 
     /// Per task of the current stage: about how much work it is (control
-    /// triangles of its part for the sizes and the first pass, which the
-    /// two stages share so that a rank meshes the parts it sized; mesh
-    /// triangles to remesh after).
+    /// triangles of its part for the sizes; the triangles its sizes ask
+    /// for in the first pass, where control triangles under-weighed the
+    /// parts that mesh finely and left one thread working alone at the end
+    /// on bunny00; mesh triangles to remesh after).
     pub fn weights(&self) -> Vec<usize> {
         let per_part = |owner: &[u32], n: usize| {
             let mut count = vec![0usize; n];
@@ -145,7 +150,8 @@ impl<'a> PartsJob<'a> {
             count
         };
         match &self.stage {
-            Stage::Sizes | Stage::First(_) => per_part(&self.first_parts, self.k),
+            Stage::Sizes => per_part(&self.first_parts, self.k),
+            Stage::First(f) => f.weights.clone(),
             Stage::Band(b) | Stage::Crossings(b) => {
                 let count = per_part(&b.owner, b.cover.len());
                 b.parts.iter().map(|&p| count[p as usize]).collect()
@@ -177,7 +183,12 @@ impl<'a> PartsJob<'a> {
             Stage::Sizes => {
                 let work = self.first_work(i)?;
                 let largest = work.sizing.largest(|t| work.owned[t]);
-                Outcome::Largest(largest, Some(Box::new(work)))
+                let expected = expected_over(work.surface.net(), &work.sizing, |t| work.owned[t]);
+                Outcome::Sizes {
+                    largest,
+                    expected,
+                    work: Some(Box::new(work)),
+                }
             }
             Stage::First(f) => {
                 let built;
@@ -263,7 +274,8 @@ impl<'a> PartsJob<'a> {
         Ok(match stage {
             Stage::Sizes => Stage::First(Box::new(self.first_pass(outcomes)?)),
             Stage::First(f) => {
-                self.works.iter_mut().for_each(|w| *w = None);
+                // Dropped side by side: a part's surface is many small blocks.
+                self.works.par_iter_mut().for_each(|w| *w = None);
                 let (joined, on_interface) =
                     (join_pieces(&self.remesher, Vec::new(), outcomes)?, f.shared);
                 Stage::Band(Box::new(self.band_pass(joined, &on_interface)?))
@@ -295,10 +307,16 @@ impl<'a> PartsJob<'a> {
     /// any part asks for, cut between the parts, the cut pinned.
     fn first_pass(&mut self, outcomes: Vec<TaskOutcome>) -> Result<FirstPass> {
         let mut largest: f64 = 0.0;
+        let mut weights = Vec::with_capacity(outcomes.len());
         for (p, outcome) in outcomes.into_iter().enumerate() {
             match outcome.0 {
-                Outcome::Largest(h, work) => {
+                Outcome::Sizes {
+                    largest: h,
+                    expected,
+                    work,
+                } => {
                     largest = largest.max(h);
+                    weights.push(expected.round() as usize);
                     self.works[p] = work.map(|w| *w);
                 }
                 Outcome::Piece(_) => return Err(wrong_outcome("sizes")),
@@ -327,6 +345,7 @@ impl<'a> PartsJob<'a> {
             owner,
             pins,
             shared,
+            weights,
         })
     }
 
@@ -497,7 +516,7 @@ fn join_pieces(
     for outcome in outcomes {
         match outcome.0 {
             Outcome::Piece(piece) => pieces.push(*piece),
-            Outcome::Largest(..) => return Err(wrong_outcome("a remeshing")),
+            Outcome::Sizes { .. } => return Err(wrong_outcome("a remeshing")),
         }
     }
     join(remesher.surface, &pieces)

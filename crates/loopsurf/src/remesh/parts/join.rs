@@ -9,7 +9,6 @@ use crate::parameters::SurfacePoint;
 use crate::surface::Surface;
 use crate::topology::NONE;
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// The pieces joined: the mesh, per vertex its index in the start it was
 /// pinned to or [`NONE`] and its target size, and per control triangle
@@ -81,7 +80,13 @@ pub(super) fn join(surface: &Surface, pieces: &[Piece]) -> Result<Joined> {
     let mut sizes: Vec<f64> = Vec::new();
     let mut triangles: Vec<[u32; 3]> = Vec::new();
     let mut faces: Vec<u32> = Vec::new();
-    let mut at_pinned: HashMap<u32, u32> = HashMap::new();
+    // Per pinned id: its vertex in the joined mesh, or NONE.
+    let ids = pieces
+        .iter()
+        .flat_map(|p| p.pinned.iter().copied().filter(|&g| g != NONE).max())
+        .max()
+        .map_or(0, |g| g as usize + 1);
+    let mut at_pinned = vec![NONE; ids];
     let mut deviation: Option<f64> = None;
     let mut shrunk = vec![1.0; surface.net().triangles().len()];
     for piece in pieces {
@@ -100,7 +105,12 @@ pub(super) fn join(surface: &Surface, pieces: &[Piece]) -> Result<Joined> {
                 };
                 match piece.pinned[i] {
                     NONE => add(),
-                    g => *at_pinned.entry(g).or_insert_with(add),
+                    g => {
+                        if at_pinned[g as usize] == NONE {
+                            at_pinned[g as usize] = add();
+                        }
+                        at_pinned[g as usize]
+                    }
                 }
             })
             .collect();

@@ -3,14 +3,14 @@
 //! stream (magic, version, 64-bit counts, CRC-32) with its own magic.
 //!
 //! Layout of one outcome after the frame's header, little-endian; the tag
-//! is 0 for a part's largest size, 1 for a remeshed piece:
+//! is 0 for a part's sizes, 1 for a remeshed piece:
 //!
 //! | bytes | content |
 //! |---|---|
 //! | 56 per vertex | x y z (f64), control triangle (u32), v w (f64), pinned start vertex or 0xffffffff (u32), target size (f64) |
 //! | 16 per triangle | a b c (u32), model face (u32) |
 //! | 12 per shrink factor | control triangle (u32), factor (f64) |
-//! | 8 per number | the largest size; or the diagonal, then the chord error measured if any |
+//! | 8 per number | the largest size, then the triangles expected; or the diagonal, then the chord error measured if any |
 //!
 //! A rank's outcomes are a u64 count, then per outcome its task (u64),
 //! its length in bytes (u64) and the outcome. Every f64 travels as its
@@ -26,16 +26,22 @@ use glam::DVec3;
 const MAGIC: &[u8; 8] = b"LOOPTASK";
 const SIZES: [u64; 4] = [56, 16, 12, 8];
 const NAMES: [&str; 4] = ["vertices", "triangles", "shrink factors", "numbers"];
-const LARGEST: u32 = 0;
+const SIZES_TAG: u32 = 0;
 const PIECE: u32 = 1;
 
 /// What one task of a [`super::PartsJob`] stage computed.
 pub struct TaskOutcome(pub(super) Outcome);
 
 pub(super) enum Outcome {
-    /// A part's largest size, and its work where it was built here (not
+    /// A part's sizes: the largest size it asks for, about how many
+    /// triangles it asks for over its own control triangles (what its
+    /// first-pass task weighs), and its work where it was built here (not
     /// sent: the rank that built it keeps it for its first pass).
-    Largest(f64, Option<Box<PartWork>>),
+    Sizes {
+        largest: f64,
+        expected: f64,
+        work: Option<Box<PartWork>>,
+    },
     Piece(Box<Piece>),
 }
 
@@ -44,9 +50,11 @@ impl TaskOutcome {
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::new();
         match &self.0 {
-            Outcome::Largest(h, _) => {
-                start(&mut out, MAGIC, LARGEST, &[0, 0, 0, 1]);
-                out.extend_from_slice(&h.to_le_bytes());
+            Outcome::Sizes {
+                largest, expected, ..
+            } => {
+                start(&mut out, MAGIC, SIZES_TAG, &[0, 0, 0, 2]);
+                f64s(&mut out, &[*largest, *expected]);
             }
             Outcome::Piece(piece) => {
                 let mesh = &piece.mesh;
@@ -96,7 +104,11 @@ impl TaskOutcome {
         let (mut r, tag, counts) = frame.open(bytes)?;
         let [nv, nt, ns, nn] = [0, 1, 2, 3].map(|i| counts[i] as usize);
         match (tag, nn) {
-            (LARGEST, 1) if nv + nt + ns == 0 => Ok(TaskOutcome(Outcome::Largest(r.f64(), None))),
+            (SIZES_TAG, 2) if nv + nt + ns == 0 => Ok(TaskOutcome(Outcome::Sizes {
+                largest: r.f64(),
+                expected: r.f64(),
+                work: None,
+            })),
             (PIECE, 1 | 2) => {
                 let mut points = Vec::with_capacity(nv);
                 let mut params = Vec::with_capacity(nv);
