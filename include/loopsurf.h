@@ -976,8 +976,8 @@ int ls_remesh(const ls_surface *surface, const ls_remesh_options *options, ls_tr
 
 // The number of parts worth remeshing in with `options` (their `parts`
 // ignored): one per 30 000 triangles the sizes ask for over the whole
-// surface, at most 64 and with at least 16 control triangles each; 1,
-// whole, below 60 000. `loopsurf mesh` remeshes in that many unless
+// surface, at most 64 and with at least 16 control triangles each,
+// rounded down to a power of two; 1, whole, below 60 000. `loopsurf mesh` remeshes in that many unless
 // told. It depends on the surface and the options alone, never on the
 // threads, so the mesh is the same on any machine. `options` may be
 // NULL for the defaults. On success `*parts` is written.

@@ -56,8 +56,8 @@ pub struct Args {
     /// core, joined along the interfaces meshed first; the mesh is the
     /// same for any thread count (RAYON_NUM_THREADS). 1 remeshes whole.
     /// Default: one part per 30 000 triangles the sizes ask for (at most
-    /// 64, each of at least 16 control triangles), whole below 60 000;
-    /// the summary says how many.
+    /// 64, each of at least 16 control triangles), rounded down to a
+    /// power of two, whole below 60 000; the summary says how many.
     #[arg(long, value_name = "K", conflicts_with = "charts")]
     parts: Option<usize>,
     /// Skip the max–min angle edge swaps (--charts).
@@ -136,7 +136,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         if parts > 1 {
             let how = match args.parts {
                 Some(_) => "as --parts asks",
-                None => "one per 30 000 triangles the sizes ask for; --parts 1 remeshes whole",
+                None => "one per 30 000 triangles the sizes ask for, down to a power of two; --parts 1 remeshes whole",
             };
             writeln!(out, "parts: {parts} ({how})")?;
         }

@@ -203,7 +203,8 @@ fn zero_parts_are_refused() {
 /// The suggested number of parts is what the mesh it leads to holds: one
 /// part per `TRIANGLES_PER_PART` triangles of the finished mesh, within
 /// the estimate's slack (the sizes' areas before grading, on the control
-/// net's area); whole below two parts' worth; the cap past it.
+/// net's area), rounded down to a power of two; whole below two parts'
+/// worth; the cap past it.
 #[test]
 fn suggested_parts_follow_the_size_of_the_mesh() {
     use loopsurf::remesh::{MAX_SUGGESTED_PARTS, TRIANGLES_PER_PART};
@@ -219,9 +220,12 @@ fn suggested_parts_follow_the_size_of_the_mesh() {
         if per_part < 1.5 {
             assert_eq!(k, 1, "h = {relative}: {made} triangles, {k} parts");
         } else {
-            // Whole parts: the count rounds down.
+            // A power of two, the largest not past the count within the
+            // slack: twice as many would be.
             assert!(
-                (k as f64 - per_part).abs() <= 0.25 * per_part + 1.0,
+                k.is_power_of_two()
+                    && k as f64 <= 1.25 * per_part + 1.0
+                    && 2.0 * k as f64 > 0.75 * per_part - 1.0,
                 "h = {relative}: {made} triangles, {k} parts"
             );
         }

@@ -220,16 +220,23 @@ impl<'a> Remesher<'a> {
     /// per [`TRIANGLES_PER_PART`] triangles the sizes ask for over the
     /// whole surface (before grading and tolerance rounds), at most
     /// [`MAX_SUGGESTED_PARTS`] and with at least [`MIN_PART_TRIANGLES`]
-    /// control triangles each; 1, whole, below two parts' worth. It
-    /// depends on the surface and the density alone, never on the
-    /// threads, so the mesh it leads to is the same on any machine.
+    /// control triangles each, rounded down to a power of two; 1, whole,
+    /// below two parts' worth. It depends on the surface and the density
+    /// alone, never on the threads, so the mesh it leads to is the same on
+    /// any machine.
+    ///
+    /// Why a power of two: the parts of a stage run side by side, so K
+    /// parts on T threads take as long as the most parts any thread runs.
+    /// Most machines have a power of two of cores, or a multiple of one:
+    /// fandisk's 3 parts ran only 1.46–1.48 times as fast on two threads as on
+    /// one.
     ///
     /// Why so many triangles a part: each part costs a sub-net, its sizes
     /// and its share of the band remeshed twice, which small parts do
     /// not earn back. On one thread, bunny00 at 0.3% of its diagonal
     /// (249 000 triangles) took 1.07 to 1.13 times the whole run's time in
     /// 2 to 16 parts and 1.30 times in 32 (one run each; 1.2 times in 8,
-    /// medians of 5, in another session); the Viking at 1% (21 000), 1.64
+    /// medians of 5, in another sitting); the Viking at 1% (21 000), 1.64
     /// times in 8.
     pub fn suggested_parts(&self) -> Result<usize> {
         let (sizing, _, _) = self.sizing_on(self.surface)?;
@@ -240,7 +247,8 @@ impl<'a> Remesher<'a> {
         Ok(if parts < 2.0 {
             1
         } else {
-            (parts as usize).min(most).max(1)
+            let k = (parts as usize).min(most).max(1);
+            1 << k.ilog2()
         })
     }
 
