@@ -93,8 +93,8 @@ pub fn run(args: Args) -> Result<(), Error> {
     let surface = args.surface.build(&net)?;
     let start = Instant::now();
     let charts = args.charts || args.uniform.is_some();
-    let (mesh, parts) = if charts {
-        (chart_mesh(&args, &surface)?, 1)
+    let (mesh, parts, smallest) = if charts {
+        (chart_mesh(&args, &surface)?, 1, None)
     } else {
         remesh(&args, &surface)?
     };
@@ -133,6 +133,9 @@ pub fn run(args: Args) -> Result<(), Error> {
     crate::write_stdout(|out| {
         writeln!(out, "{}", args.input.describe(&net))?;
         summary(out, &mesh, &times, snapped)?;
+        if let Some(size) = smallest {
+            short_edges(out, &mesh, size)?;
+        }
         if parts > 1 {
             let how = match args.parts {
                 Some(_) => "as --parts asks",
@@ -158,8 +161,9 @@ pub fn run(args: Args) -> Result<(), Error> {
 
 /// The quality remesher's mesh, with a spinner. With no density at all,
 /// the curvature-adaptive mesh at the default tolerance: the mesh a user
-/// asking for "a mesh" expects. Also the number of parts it was made in.
-fn remesh(args: &Args, surface: &Surface) -> Result<(SurfaceMesh, usize), Error> {
+/// asking for "a mesh" expects. Also the number of parts it was made in,
+/// and the smallest size it asked for anywhere.
+fn remesh(args: &Args, surface: &Surface) -> Result<(SurfaceMesh, usize, Option<f64>), Error> {
     let adapt = args.adapt.is_some() || (args.size.is_none() && args.tolerance.is_none());
     let mut remesher = Remesher::new(surface)
         .adapt_curvature(adapt)
@@ -195,7 +199,38 @@ fn remesh(args: &Args, surface: &Surface) -> Result<(SurfaceMesh, usize), Error>
             );
         }
     }
-    Ok((mesh, parts))
+    Ok((mesh, parts, Some(remesher.smallest_size()?)))
+}
+
+/// An output edge shorter than this fraction of the smallest size asked
+/// for is named in the summary: two vertices that nearly coincide.
+const SHORT_EDGE: f64 = 1e-6;
+
+/// The summary's line on edges shorter than [`SHORT_EDGE`] × `size` (the
+/// smallest size the remesher asked for): none, or how many, how many a
+/// feature forces (both ends on hard edges), and the shortest by its
+/// vertices and place.
+fn short_edges(out: &mut dyn Write, mesh: &SurfaceMesh, size: f64) -> std::io::Result<()> {
+    let limit = SHORT_EDGE * size;
+    let short = mesh.short_edges(limit);
+    let Some(first) = short.first() else {
+        return writeln!(
+            out,
+            "short edges: none below {SHORT_EDGE:e} × the smallest size asked for ({limit:.4e})"
+        );
+    };
+    let forced = short.iter().filter(|e| e.forced).count();
+    let [a, b] = first.ends;
+    let at = mesh.points[a as usize];
+    writeln!(
+        out,
+        "short edges: {} below {SHORT_EDGE:e} × the smallest size asked for ({limit:.4e}), {forced} of them forced by features (both ends on hard edges); the shortest, {:.3e} long, joins vertices {a} and {b} at ({:.6}, {:.6}, {:.6})",
+        short.len(),
+        first.length,
+        at.x,
+        at.y,
+        at.z
+    )
 }
 
 /// Where the time went, in seconds from the start of meshing: the

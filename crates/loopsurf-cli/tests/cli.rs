@@ -382,6 +382,7 @@ fn mesh_the_viking_writes_its_summary_and_files() {
         "below 20°",
         "below 10°",
         "edge lengths:",
+        "short edges: none below 1e-6 × the smallest size asked for",
     ] {
         assert!(
             summary.contains(needle),

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{chord_error_between_probes, closest_vertices};
-use loopsurf::cad::{self, Analytic, CapStyle};
+use loopsurf::cad::{self, CapStyle};
 use loopsurf::{ControlNet, DVec3, Remesher, Surface};
 use std::collections::HashMap;
 

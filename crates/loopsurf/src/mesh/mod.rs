@@ -39,7 +39,7 @@ mod rounds;
 pub use crate::geometry::min_angle;
 pub use high_order::{onto_surface, CurvedMesh, OntoSurface};
 pub use labels::{curve_edges, face_labels, CurveEdges};
-pub use quality::{MeshQuality, TriangleQuality};
+pub use quality::{MeshQuality, ShortEdge, TriangleQuality};
 
 use crate::error::{Error, Result};
 use crate::parameters::{self, vertex_point, SurfacePoint};

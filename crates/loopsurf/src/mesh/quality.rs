@@ -47,6 +47,17 @@ pub struct MeshQuality {
     pub edge_lengths: [f64; 5],
 }
 
+/// An output edge shorter than a length ([`SurfaceMesh::short_edges`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShortEdge {
+    /// Its end vertices, the lower index first.
+    pub ends: [u32; 2],
+    pub length: f64,
+    /// Whether a feature forces it: both ends lie on hard edges (two
+    /// crease curves, or a curve and a corner, closer than the size).
+    pub forced: bool,
+}
+
 fn triangle_quality(p: [DVec3; 3]) -> TriangleQuality {
     let min_angle = max_cosine(p[0], p[1], p[2])
         .clamp(-1.0, 1.0)
@@ -113,6 +124,31 @@ impl SurfaceMesh {
             below_10: share(10.0),
             edge_lengths: [at(0.0), at(0.05), at(0.5), at(0.95), at(1.0)],
         }
+    }
+
+    /// The edges shorter than `length`, each once, the shortest first
+    /// (ties by their ends). A remesher's edge far below the size it was
+    /// asked for is a degenerate one unless a feature forces it.
+    pub fn short_edges(&self, length: f64) -> Vec<ShortEdge> {
+        let mut on_hard = vec![false; self.points.len()];
+        for &v in self.hard_edges.iter().flatten() {
+            on_hard[v as usize] = true;
+        }
+        let mut short: Vec<ShortEdge> = self
+            .triangles
+            .par_iter()
+            .flat_map_iter(|t| (0..3).map(move |k| [t[k], t[(k + 1) % 3]]))
+            .map(|[a, b]| [a.min(b), a.max(b)])
+            .map(|ends| ShortEdge {
+                ends,
+                length: self.points[ends[0] as usize].distance(self.points[ends[1] as usize]),
+                forced: ends.iter().all(|&v| on_hard[v as usize]),
+            })
+            .filter(|e| e.length < length)
+            .collect();
+        short.sort_by(|a, b| a.length.total_cmp(&b.length).then(a.ends.cmp(&b.ends)));
+        short.dedup_by_key(|e| e.ends);
+        short
     }
 
     /// The triangles whose smallest angle is below `limit` degrees and sits
@@ -253,5 +289,54 @@ impl SurfaceMesh {
                 (x, hint)
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parameters::SurfacePoint;
+
+    /// Two triangles over a unit square, one corner moved to within
+    /// `gap` of another (vertex 2 next to vertex 1), and the hard edges
+    /// given.
+    fn square(gap: f64, hard_edges: Vec<[u32; 2]>) -> SurfaceMesh {
+        let points = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, gap, 0.0), DVec3::Y];
+        SurfaceMesh {
+            params: vec![
+                SurfacePoint {
+                    tri: 0,
+                    v: 0.0,
+                    w: 0.0
+                };
+                points.len()
+            ],
+            points,
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            charts: Vec::new(),
+            faces: vec![0, 0],
+            hard_edge_curves: vec![0; hard_edges.len()],
+            hard_edges,
+            deviation: None,
+            diagonal: 2f64.sqrt(),
+        }
+    }
+
+    #[test]
+    fn short_edges_are_found_once_and_forced_only_between_hard_vertices() {
+        let free = square(1e-9, Vec::new());
+        let short = free.short_edges(1e-6);
+        assert_eq!(short.len(), 1, "{short:?}");
+        assert_eq!(short[0].ends, [1, 2]);
+        assert_eq!(short[0].length, 1e-9);
+        assert!(!short[0].forced);
+        assert!(free.short_edges(1e-9).is_empty(), "strictly shorter only");
+        // Both ends on hard edges (a crease along the side 0-1 and one
+        // along 2-3): forced. One end only: not.
+        let both = square(1e-9, vec![[0, 1], [2, 3]]);
+        assert!(both.short_edges(1e-6)[0].forced);
+        let one = square(1e-9, vec![[0, 1]]);
+        assert!(!one.short_edges(1e-6)[0].forced);
+        assert!(square(0.5, Vec::new()).short_edges(1e-6).is_empty());
     }
 }

@@ -95,6 +95,10 @@ pub const DEFAULT_MAX_TRIANGLES: usize = 20_000_000;
 /// with the angles as good (mean-min 52.1°, 51.5°, 51.6°).
 const UNIFORM_AIM: f64 = 1.07;
 
+/// Sizes that follow curvature go no lower than this fraction of their
+/// cap (the size, or the default cap).
+const SMALLEST_ADAPTED: f64 = 1e-3;
+
 /// Rounds of split, collapse, flip and relax.
 const ROUNDS: usize = 5;
 
@@ -269,11 +273,25 @@ impl<'a> Remesher<'a> {
             // splits the alignment check refused.
             (size, Some(tol)) => {
                 let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
-                Sizing::curvature(surface, tol, cap, cap * 1e-3, self.gradation)
+                Sizing::curvature(surface, tol, cap, cap * SMALLEST_ADAPTED, self.gradation)
             }
             (None, None) => unreachable!("settings asks for a density"),
         };
         Ok((sizing, tolerance, budget))
+    }
+
+    /// The smallest edge length these settings ask for anywhere: the
+    /// size itself when it is uniform; where sizes follow curvature, the
+    /// floor they never go below ([`SMALLEST_ADAPTED`] × the size, or ×
+    /// the default cap). An output edge far below it is a degenerate one
+    /// unless a feature forces it ([`crate::SurfaceMesh::short_edges`]).
+    pub fn smallest_size(&self) -> Result<f64> {
+        let (tolerance, _) = self.settings()?;
+        let diagonal = self.surface.net().bbox_diagonal();
+        Ok(match (self.size, tolerance) {
+            (Some(h), None) => h,
+            (size, _) => size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal) * SMALLEST_ADAPTED,
+        })
     }
 
     /// The settings checked: the chord tolerance in model units (relative
