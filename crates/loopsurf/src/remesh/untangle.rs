@@ -92,8 +92,9 @@ impl Remeshing<'_> {
         // everywhere, 28 with it lifted on folds from the start (joint.off:
         // 7, 0 and 0). A clean mesh is searched once.
         let mut worst: f64 = 0.0;
+        let mut last = None;
         for floor in [Floor::Everywhere, Floor::OffFolds, Floor::Nowhere] {
-            let (made, left) = self.untangle_rounds(tolerance, floor);
+            let (made, left) = self.untangle_rounds(tolerance, floor, &mut last);
             worst = worst.max(made);
             if left == 0 || tolerance.is_none() {
                 break;
@@ -105,12 +106,23 @@ impl Remeshing<'_> {
     /// Rounds of [`Remeshing::untangle`], the angle floor kept where
     /// `floor` says: the largest chord error of a triangle made, and how
     /// many pairs the last search found (more may be left where its
-    /// round removed none).
-    fn untangle_rounds(&mut self, tolerance: Option<f64>, floor: Floor) -> (f64, usize) {
+    /// round removed none). `last` is the search before and the triangle
+    /// slots changed since, which the next search starts from (and is
+    /// left so for the next stage).
+    fn untangle_rounds(
+        &mut self,
+        tolerance: Option<f64>,
+        floor: Floor,
+        last: &mut Option<(Near, HashSet<u32>)>,
+    ) -> (f64, usize) {
         let mut worst: f64 = 0.0;
         let mut left = 0;
         for _ in 0..ROUNDS {
-            let near = Near::of(self);
+            let near = match last.take() {
+                Some((before, changed)) => Near::since(self, &before, &changed),
+                None => Near::of(self),
+            };
+            let mut changed: HashSet<u32> = HashSet::new();
             let pairs = &near.pairs;
             left = pairs.len();
             if pairs.is_empty() {
@@ -139,14 +151,18 @@ impl Remeshing<'_> {
                     let mut ring = Vec::new();
                     self.mesh.neighbours(v, &mut ring);
                     busy.extend(ring);
+                    changed.extend(self.mesh.outgoing(v).map(|e| e / 3));
                     self.mesh.collapse(h, v);
                     worst = worst.max(chord);
                     removed += 1;
                 }
             }
             if removed == 0 {
-                removed = self.flip_crossings(&near, tolerance, floor);
+                let flipped = self.flip_crossings(&near, tolerance, floor);
+                removed = flipped.len() / 2;
+                changed.extend(flipped);
             }
+            *last = Some((near, changed));
             if removed == 0 {
                 break;
             }
@@ -403,12 +419,17 @@ impl Remeshing<'_> {
 
     /// Flips edges of crossing triangles where the two new triangles cross
     /// fewer others than the two old ones did, under the conditions of a
-    /// removal (see the module doc). Returns how many.
-    fn flip_crossings(&mut self, near: &Near, tolerance: Option<f64>, floor: Floor) -> usize {
+    /// removal (see the module doc). Returns the slots of the triangles
+    /// flipped (two a flip).
+    fn flip_crossings(
+        &mut self,
+        near: &Near,
+        tolerance: Option<f64>,
+        floor: Floor,
+    ) -> HashSet<u32> {
         let mut slots: Vec<u32> = near.per_slot.keys().copied().collect();
         slots.sort_unstable();
         let mut busy: HashSet<u32> = HashSet::new();
-        let mut flipped = 0;
         for t in slots {
             for h in 3 * t..3 * t + 3 {
                 let g = self.mesh.opposite(h);
@@ -450,10 +471,9 @@ impl Remeshing<'_> {
                 }
                 self.mesh.flip(h);
                 busy.extend([h / 3, g / 3]);
-                flipped += 1;
             }
         }
-        flipped
+        busy
     }
 
     /// Collapsing v (whose half-edges are `outgoing`) into `keep`: each
@@ -602,12 +622,64 @@ impl Near {
     fn of(work: &Remeshing) -> Near {
         let mut near = Near::boxes_of(work);
         near.pairs = crossings(&near.points, &near.triangles);
-        for &[i, j] in &near.pairs {
+        near.count_pairs();
+        near
+    }
+
+    /// The mesh now, with its crossing pairs, found from `before` (an
+    /// earlier search) and the slots `changed` since: a pair of two
+    /// triangles neither of which changed is one as before, so only the
+    /// changed ones are searched anew. The same pairs as [`Near::of`]
+    /// finds, in the same order: on pig, the rounds after the first took
+    /// 0.10 to 0.15 s each on one thread, a fifth of its remeshing.
+    fn since(work: &Remeshing, before: &Near, changed: &HashSet<u32>) -> Near {
+        let mut near = Near::boxes_of(work);
+        let mut index = vec![NONE; (work.mesh.num_half_edges() / 3) as usize];
+        for (i, &s) in near.slots.iter().enumerate() {
+            index[s as usize] = i as u32;
+        }
+        let slot = |i: u32| before.slots[i as usize];
+        let mut pairs: Vec<[u32; 2]> = before
+            .pairs
+            .iter()
+            .filter(|p| p.iter().all(|&i| !changed.contains(&slot(i))))
+            .map(|p| p.map(|i| index[slot(i) as usize]))
+            .map(|[i, j]| [i.min(j), i.max(j)])
+            .collect();
+        let mut fresh: Vec<u32> = changed
+            .iter()
+            .map(|&s| index[s as usize])
+            .filter(|&i| i != NONE)
+            .collect();
+        fresh.sort_unstable();
+        let is_fresh = |i: usize| changed.contains(&near.slots[i]);
+        for &i in &fresh {
+            let t = near.triangles[i as usize];
+            let bounds = Box3::of(t.map(|v| near.points[v as usize]));
+            near.tree.overlapping(&bounds, |j| {
+                // A pair of two changed triangles once, from its lower.
+                if j == i as usize || (is_fresh(j) && j < i as usize) {
+                    return;
+                }
+                let (a, b) = (j.min(i as usize), j.max(i as usize));
+                if cross(&near.points, near.triangles[a], near.triangles[b]) {
+                    pairs.push([a as u32, b as u32]);
+                }
+            });
+        }
+        pairs.sort_unstable();
+        near.pairs = pairs;
+        near.count_pairs();
+        near
+    }
+
+    /// Per slot: its crossing pairs.
+    fn count_pairs(&mut self) {
+        for &[i, j] in &self.pairs {
             for t in [i, j] {
-                *near.per_slot.entry(near.slots[t as usize]).or_default() += 1;
+                *self.per_slot.entry(self.slots[t as usize]).or_default() += 1;
             }
         }
-        near
     }
 
     /// The mesh now, its pairs not searched (none listed): for counting
