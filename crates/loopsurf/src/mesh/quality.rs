@@ -94,18 +94,10 @@ impl SurfaceMesh {
         let q = self.triangle_quality();
         let n = q.len().max(1) as f64;
         let share = |limit: f64| q.par_iter().filter(|q| q.min_angle < limit).count() as f64 / n;
-        let mut edges: Vec<(u32, u32)> = self
-            .triangles
+        let mut lengths: Vec<f64> = self
+            .unique_edges()
             .par_iter()
-            .flat_map_iter(|t| {
-                (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])))
-            })
-            .collect();
-        edges.par_sort_unstable();
-        edges.dedup();
-        let mut lengths: Vec<f64> = edges
-            .par_iter()
-            .map(|&(a, b)| self.points[a as usize].distance(self.points[b as usize]))
+            .map(|&[a, b]| self.points[a as usize].distance(self.points[b as usize]))
             .collect();
         lengths.par_sort_unstable_by(f64::total_cmp);
         let at = |f: f64| {
@@ -130,25 +122,41 @@ impl SurfaceMesh {
     /// (ties by their ends). A remesher's edge far below the size it was
     /// asked for is a degenerate one unless a feature forces it.
     pub fn short_edges(&self, length: f64) -> Vec<ShortEdge> {
-        let mut on_hard = vec![false; self.points.len()];
-        for &v in self.hard_edges.iter().flatten() {
-            on_hard[v as usize] = true;
-        }
+        let degree = self.hard_degrees();
         let mut short: Vec<ShortEdge> = self
-            .triangles
-            .par_iter()
-            .flat_map_iter(|t| (0..3).map(move |k| [t[k], t[(k + 1) % 3]]))
-            .map(|[a, b]| [a.min(b), a.max(b)])
+            .unique_edges()
+            .into_par_iter()
             .map(|ends| ShortEdge {
                 ends,
                 length: self.points[ends[0] as usize].distance(self.points[ends[1] as usize]),
-                forced: ends.iter().all(|&v| on_hard[v as usize]),
+                forced: ends.iter().all(|&v| degree[v as usize] > 0),
             })
             .filter(|e| e.length < length)
             .collect();
         short.sort_by(|a, b| a.length.total_cmp(&b.length).then(a.ends.cmp(&b.ends)));
-        short.dedup_by_key(|e| e.ends);
         short
+    }
+
+    /// Every edge once, as its ends (the lower first), in order.
+    fn unique_edges(&self) -> Vec<[u32; 2]> {
+        let mut edges: Vec<[u32; 2]> = self
+            .triangles
+            .par_iter()
+            .flat_map_iter(|t| (0..3).map(move |k| [t[k], t[(k + 1) % 3]]))
+            .map(|[a, b]| [a.min(b), a.max(b)])
+            .collect();
+        edges.par_sort_unstable();
+        edges.dedup();
+        edges
+    }
+
+    /// Per vertex: how many hard edges end at it (saturating).
+    fn hard_degrees(&self) -> Vec<u8> {
+        let mut degree = vec![0u8; self.points.len()];
+        for &v in self.hard_edges.iter().flatten() {
+            degree[v as usize] = degree[v as usize].saturating_add(1);
+        }
+        degree
     }
 
     /// The triangles whose smallest angle is below `limit` degrees and sits
@@ -157,12 +165,7 @@ impl SurfaceMesh {
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
         let hard: std::collections::HashSet<(u32, u32)> =
             self.hard_edges.iter().map(|e| key(e[0], e[1])).collect();
-        let mut degree = vec![0u8; self.points.len()];
-        for e in &self.hard_edges {
-            for &v in e {
-                degree[v as usize] = degree[v as usize].saturating_add(1);
-            }
-        }
+        let degree = self.hard_degrees();
         let cos_limit = limit.to_radians().cos();
         self.triangles
             .par_iter()

@@ -232,8 +232,8 @@ impl<'a> Remesher<'a> {
     /// Why a power of two: the parts of a stage run side by side, so K
     /// parts on T threads take as long as the most parts any thread runs.
     /// Most machines have a power of two of cores, or a multiple of one:
-    /// fandisk's 3 parts ran only 1.46–1.48 times as fast on two threads as on
-    /// one.
+    /// fandisk's 3 parts ran only 1.46–1.48 times as fast on two threads
+    /// as on one.
     ///
     /// Why so many triangles a part: each part costs a sub-net, its sizes
     /// and its share of the band remeshed twice, which small parts do
@@ -263,7 +263,6 @@ impl<'a> Remesher<'a> {
     /// diagonal.
     fn sizing_on(&self, surface: &Surface) -> Result<(Sizing, Option<f64>, Budget)> {
         let (tolerance, budget) = self.settings()?;
-        let diagonal = self.surface.net().bbox_diagonal();
         let sizing = match (self.size, tolerance) {
             (Some(h), None) => Sizing::Uniform(h * UNIFORM_AIM),
             // A size with a tolerance sizes by curvature under the size.
@@ -271,8 +270,8 @@ impl<'a> Remesher<'a> {
             // converge on featured models (fandisk, the Viking): its first
             // rounds at the full size left edges spanning features, whose
             // splits the alignment check refused.
-            (size, Some(tol)) => {
-                let cap = size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal);
+            (_, Some(tol)) => {
+                let cap = self.adapt_cap();
                 Sizing::curvature(surface, tol, cap, cap * SMALLEST_ADAPTED, self.gradation)
             }
             (None, None) => unreachable!("settings asks for a density"),
@@ -287,11 +286,17 @@ impl<'a> Remesher<'a> {
     /// unless a feature forces it ([`crate::SurfaceMesh::short_edges`]).
     pub fn smallest_size(&self) -> Result<f64> {
         let (tolerance, _) = self.settings()?;
-        let diagonal = self.surface.net().bbox_diagonal();
         Ok(match (self.size, tolerance) {
             (Some(h), None) => h,
-            (size, _) => size.unwrap_or(DEFAULT_ADAPT_CAP * diagonal) * SMALLEST_ADAPTED,
+            _ => self.adapt_cap() * SMALLEST_ADAPTED,
         })
+    }
+
+    /// The largest size where sizes follow curvature: the size, or
+    /// [`DEFAULT_ADAPT_CAP`] of the diagonal.
+    fn adapt_cap(&self) -> f64 {
+        self.size
+            .unwrap_or(DEFAULT_ADAPT_CAP * self.surface.net().bbox_diagonal())
     }
 
     /// The settings checked: the chord tolerance in model units (relative
