@@ -181,6 +181,27 @@ fn an_open_creased_surface_in_parts_has_the_whole_runs_boundary() {
     );
 }
 
+/// anchor.off (adapted, as `loopsurf mesh` does by default), whose surface folds and crosses itself around its fans, in
+/// 3 and 4 parts: one closed manifold mesh, every directed edge once, every
+/// vertex the surface at its parameters. Where the surface folds, both
+/// sides of an interface see one corner as convex; each piece used to cut
+/// it with the same new edge, and the band pass refused the joined mesh
+/// ("not a manifold").
+#[test]
+fn a_folding_surface_in_parts_joins_into_one_manifold() {
+    let Some((_, surface)) = tagged("anchor.off", 30.0) else {
+        return;
+    };
+    for k in [3, 4] {
+        let what = format!("anchor in {k} parts");
+        let mesh = remesh(&surface, k, 2);
+        assert_eq!(boundary_loops(&mesh, &what), 0, "{what}: open");
+        for (p, at) in mesh.points.iter().zip(&mesh.params) {
+            assert_eq!(surface.point(at.tri as usize, at.v, at.w).unwrap(), *p);
+        }
+    }
+}
+
 #[test]
 fn zero_parts_are_refused() {
     let net = common::example("viking", Some(30.0));

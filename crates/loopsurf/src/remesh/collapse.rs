@@ -108,7 +108,8 @@ impl Remeshing<'_> {
     /// Whether the features and the topology let h's edge collapse with
     /// `remove` merging into the other end: `remove` is neither pinned nor
     /// a corner, and on a curve only along it; no triangle would get two
-    /// labelled sides on one edge; the mesh stays a manifold.
+    /// labelled sides on one edge; the mesh stays a manifold; every new
+    /// edge may join its ends ([`Remeshing::may_join`]).
     pub(super) fn collapse_allowed(&mut self, h: u32, remove: u32) -> bool {
         let label = self.mesh.edge_label[h as usize];
         if self.is_pinned(remove) {
@@ -132,7 +133,18 @@ impl Remeshing<'_> {
         }
         let mut scratch = std::mem::take(&mut self.scratch);
         let topological = self.mesh.can_collapse(h, &mut scratch);
+        let keep = if self.mesh.origin(h) == remove {
+            self.mesh.dest(h)
+        } else {
+            self.mesh.origin(h)
+        };
+        let joins_new = topological && self.yields[keep as usize] && {
+            self.mesh.neighbours(remove, &mut scratch[0]);
+            scratch[0]
+                .iter()
+                .any(|&x| x != keep && !self.may_join(keep, x) && !self.mesh.joined(keep, x))
+        };
         self.scratch = scratch;
-        topological
+        topological && !joins_new
     }
 }

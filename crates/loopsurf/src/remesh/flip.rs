@@ -117,7 +117,7 @@ impl Remeshing<'_> {
     /// Whether flipping h keeps the mesh simple, makes no edge longer than
     /// a split allows, and makes valid triangles.
     fn flip_allowed(&self, h: u32) -> bool {
-        if !self.mesh.can_flip(h) {
+        if !self.may_flip(h) {
             return false;
         }
         let g = self.mesh.opposite(h);

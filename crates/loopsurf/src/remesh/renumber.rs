@@ -36,6 +36,7 @@ impl Remeshing<'_> {
         self.vertices = order.iter().map(|&v| self.vertices[v as usize]).collect();
         self.size = order.iter().map(|&v| self.size[v as usize]).collect();
         self.pinned = order.iter().map(|&v| self.pinned[v as usize]).collect();
+        self.yields = order.iter().map(|&v| self.yields[v as usize]).collect();
         self.size_bound = order.iter().map(|&v| self.size_bound[v as usize]).collect();
     }
 }

@@ -363,7 +363,7 @@ impl Remeshing<'_> {
             let was = self
                 .worst_cosine(replaced[0], None)
                 .max(self.worst_cosine(replaced[1], None));
-            if was <= below || !self.mesh.can_flip(h) {
+            if was <= below || !self.may_flip(h) {
                 continue;
             }
             let new = [[c, a, d], [c, d, b]];
@@ -448,7 +448,7 @@ impl Remeshing<'_> {
                     || self.mesh.edge_label[h as usize] != NONE
                     || busy.contains(&(h / 3))
                     || busy.contains(&(g / 3))
-                    || !self.mesh.can_flip(h)
+                    || !self.may_flip(h)
                 {
                     continue;
                 }

@@ -7,20 +7,37 @@ use crate::sets::DisjointSets;
 use crate::topology::NONE;
 use std::collections::HashMap;
 
-/// Per vertex of a mesh: whether triangles of more than one part use it.
-pub(super) fn shared_vertices(triangles: &[[u32; 3]], owner: &[u32], n: usize) -> Vec<bool> {
-    let mut first = vec![NONE; n];
-    let mut shared = vec![false; n];
+/// Per vertex of a mesh: how many pieces meet there, counted up to 3,
+/// each part one piece and the triangles no part takes ([`NONE`]) one
+/// more.
+pub(super) fn pieces_meeting(triangles: &[[u32; 3]], owner: &[u32], n: usize) -> Vec<u8> {
+    let mut seen = vec![[0u32; 2]; n];
+    let mut count = vec![0u8; n];
     for (tri, &p) in triangles.iter().zip(owner) {
         for &v in tri {
-            match first[v as usize] {
-                NONE => first[v as usize] = p,
-                q if q != p => shared[v as usize] = true,
-                _ => {}
+            let (seen, count) = (&mut seen[v as usize], &mut count[v as usize]);
+            let known = &seen[..(*count as usize).min(2)];
+            if *count < 3 && !known.contains(&p) {
+                if *count < 2 {
+                    seen[*count as usize] = p;
+                }
+                *count += 1;
             }
         }
     }
-    shared
+    count
+}
+
+/// Per vertex of a mesh: the lowest part whose triangles use it
+/// ([`NONE`] where none does).
+pub(super) fn lowest_part(triangles: &[[u32; 3]], owner: &[u32], n: usize) -> Vec<u32> {
+    let mut lowest = vec![NONE; n];
+    for (tri, &p) in triangles.iter().zip(owner) {
+        for &v in tri {
+            lowest[v as usize] = lowest[v as usize].min(p);
+        }
+    }
+    lowest
 }
 
 /// The part most of a triangle's three votes name (the first vote's
@@ -137,4 +154,24 @@ pub(super) fn blobs(triangles: &[[u32; 3]], band: &[bool]) -> (Vec<u32>, usize) 
         }
     }
     (owner, count as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{lowest_part, pieces_meeting};
+    use crate::topology::NONE;
+
+    #[test]
+    fn pieces_meet_at_shared_vertices_and_corners() {
+        // Three triangles in a row: part 0, part 1, and one no part takes.
+        let triangles = [[0, 1, 2], [1, 3, 2], [2, 3, 4]];
+        let owner = [0, 1, NONE];
+        assert_eq!(pieces_meeting(&triangles, &owner, 5), vec![1, 2, 3, 2, 1]);
+        assert_eq!(lowest_part(&triangles, &owner, 5), vec![0, 0, 0, 1, NONE]);
+        // One part twice counts once; a fourth piece still counts 3.
+        let triangles = [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]];
+        assert_eq!(pieces_meeting(&triangles, &[5, 5, 7, 9], 6)[0], 3);
+        assert_eq!(pieces_meeting(&triangles, &[5, 6, 7, 8], 6)[0], 3);
+        assert_eq!(pieces_meeting(&triangles, &[5, 6, 5, 6], 6)[0], 2);
+    }
 }

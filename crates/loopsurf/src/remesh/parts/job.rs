@@ -12,10 +12,10 @@
 //! ([`super::outcome`]) to every rank, and advances with all of them: the
 //! mesh is the threaded one, bit for bit, on any number of ranks.
 
-use super::cuts::{blobs, control_rings, majority, mesh_rings, shared_vertices};
+use super::cuts::{blobs, control_rings, lowest_part, majority, mesh_rings, pieces_meeting};
 use super::join::{join, kept, sub_mesh, Joined};
 use super::outcome::{Outcome, TaskOutcome};
-use super::work::{run_tasks, PartWork};
+use super::work::{run_tasks, PartWork, Pins};
 use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
@@ -51,7 +51,7 @@ enum Stage {
     /// The band around the first interfaces, cut by a second partition.
     Band(Box<BandPass>),
     /// The band around the places where the second cut crossed a first
-    /// interface, each connected blob uncut.
+    /// interface or three pieces met, each connected blob uncut.
     Crossings(Box<BandPass>),
     Done(SurfaceMesh),
     /// A stage failed to advance: what went wrong.
@@ -64,6 +64,8 @@ struct FirstPass {
     owner: Vec<u32>,
     /// Per chart vertex: itself where two parts share it, else [`NONE`].
     pins: Vec<u32>,
+    /// Per chart vertex: the lowest part holding it.
+    lowest: Vec<u32>,
     shared: Vec<bool>,
     /// Per part: the triangles its sizes ask for, what its task weighs.
     weights: Vec<usize>,
@@ -83,7 +85,11 @@ struct BandPass {
     /// shrink factors), or [`NONE`].
     control_owner: Vec<u32>,
     pins: Vec<u32>,
-    shared: Vec<bool>,
+    /// Per vertex of the mesh: the lowest part holding it.
+    lowest: Vec<u32>,
+    /// Per vertex of the mesh: how many pieces meet there (up to 3), the
+    /// triangles no part remeshes one piece.
+    meeting: Vec<u8>,
     /// Per vertex of the mesh: whether it is a first-interface vertex
     /// (the band pass only, to find where the second cut crossed them).
     old: Vec<bool>,
@@ -199,9 +205,13 @@ impl<'a> PartsJob<'a> {
                         &built
                     }
                 };
-                Outcome::Piece(Box::new(
-                    work.remesh(&f.chart, &f.owner, &f.pins, None, i as u32)?,
-                ))
+                Outcome::Piece(Box::new(work.remesh(
+                    &f.chart,
+                    &f.owner,
+                    f.pins(),
+                    None,
+                    i as u32,
+                )?))
             }
             Stage::Band(b) | Stage::Crossings(b) => {
                 let p = b.parts[i];
@@ -212,7 +222,8 @@ impl<'a> PartsJob<'a> {
                     p,
                     Some(&b.pass.shrunk),
                 )?;
-                let piece = work.remesh(&b.pass.mesh, &b.owner, &b.pins, Some(&b.pass.sizes), p)?;
+                let piece =
+                    work.remesh(&b.pass.mesh, &b.owner, b.pins(), Some(&b.pass.sizes), p)?;
                 Outcome::Piece(Box::new(piece))
             }
             Stage::Done(_) | Stage::Failed(_) => unreachable!("no task at the end"),
@@ -283,11 +294,19 @@ impl<'a> PartsJob<'a> {
             Stage::Band(b) => {
                 let keep = kept(&b.pass, &b.owner);
                 let moved = join_pieces(&self.remesher, vec![keep], outcomes)?;
-                // The first interface's vertices the second cut pinned again.
+                // The first interface's vertices the second cut pinned
+                // again, and the corners where three pieces met (the second
+                // cut at the band's rim, or three parts): their triangles
+                // had every vertex pinned, so no pass could mend them.
                 let again: Vec<bool> = moved
                     .from
                     .iter()
-                    .map(|&g| g != NONE && b.old[g as usize] && b.shared[g as usize])
+                    .map(|&g| {
+                        g != NONE && {
+                            let meeting = b.meeting[g as usize];
+                            meeting >= 3 || (meeting == 2 && b.old[g as usize])
+                        }
+                    })
                     .collect();
                 if again.contains(&true) {
                     Stage::Crossings(Box::new(self.crossings_pass(moved, &again)))
@@ -336,14 +355,19 @@ impl<'a> PartsJob<'a> {
             .iter()
             .map(|&c| self.first_parts[c as usize])
             .collect();
-        let shared = shared_vertices(&chart.triangles, &owner, chart.points.len());
+        let shared: Vec<bool> = pieces_meeting(&chart.triangles, &owner, chart.points.len())
+            .iter()
+            .map(|&m| m >= 2)
+            .collect();
         let pins = (0..chart.points.len() as u32)
             .map(|v| if shared[v as usize] { v } else { NONE })
             .collect();
+        let lowest = lowest_part(&chart.triangles, &owner, chart.points.len());
         Ok(FirstPass {
             chart,
             owner,
             pins,
+            lowest,
             shared,
             weights,
         })
@@ -391,9 +415,9 @@ impl<'a> PartsJob<'a> {
         ))
     }
 
-    /// The last pass over `moved`: the band around the first-interface
-    /// vertices `again` that the second cut pinned again, each connected
-    /// blob of it one piece, uncut.
+    /// The last pass over `moved`: the band around the vertices `again`
+    /// (first-interface vertices the second cut pinned again, and corners
+    /// where three pieces met), each connected blob of it one piece, uncut.
     fn crossings_pass(&self, moved: Joined, again: &[bool]) -> BandPass {
         let mesh = &moved.mesh;
         let band = mesh_rings(&mesh.triangles, again, CROSSING_RINGS);
@@ -461,7 +485,23 @@ impl<'a> PartsJob<'a> {
     }
 }
 
+impl FirstPass {
+    fn pins(&self) -> Pins<'_> {
+        Pins {
+            id: &self.pins,
+            lowest: &self.lowest,
+        }
+    }
+}
+
 impl BandPass {
+    fn pins(&self) -> Pins<'_> {
+        Pins {
+            id: &self.pins,
+            lowest: &self.lowest,
+        }
+    }
+
     /// The pass over `pass.mesh`'s triangles that `owner` gives one of
     /// `k` parts, every vertex outside `band` and every vertex two parts
     /// share pinned; part p's sub-net owns the control triangles t with
@@ -475,10 +515,11 @@ impl BandPass {
         old: Vec<bool>,
     ) -> BandPass {
         let mesh = &pass.mesh;
-        let shared = shared_vertices(&mesh.triangles, &owner, mesh.points.len());
+        let meeting = pieces_meeting(&mesh.triangles, &owner, mesh.points.len());
+        let lowest = lowest_part(&mesh.triangles, &owner, mesh.points.len());
         let pins = (0..mesh.points.len() as u32)
             .map(|v| {
-                if shared[v as usize] || !band[v as usize] {
+                if meeting[v as usize] >= 2 || !band[v as usize] {
                     v
                 } else {
                     NONE
@@ -501,7 +542,8 @@ impl BandPass {
             cover,
             control_owner,
             pins,
-            shared,
+            lowest,
+            meeting,
             old,
         }
     }

@@ -23,9 +23,11 @@
 //! rest of the mesh, done, stays as it is. The new interfaces run through
 //! vertices the first pass has already placed well. Where the second cut
 //! must cross a first interface (two networks of cuts over one surface
-//! cross), the first interface's vertices there are pinned again; a last
-//! round remeshes the band around those crossings, each connected blob as
-//! one uncut piece.
+//! cross), the first interface's vertices there are pinned again; so are
+//! the corners where three pieces of the band pass meet (the second cut
+//! at the band's rim, or three parts), whose triangles had every vertex
+//! pinned. A last round remeshes the band around those crossings and
+//! corners, each connected blob as one uncut piece.
 //!
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
@@ -58,8 +60,8 @@ pub use outcome::{outcomes_from_bytes, outcomes_to_bytes, TaskOutcome};
 /// first-pass interface.
 const BAND_RINGS: usize = 4;
 
-/// Where the second cut crossed a first interface, the vertices within
-/// this many edges of the first interface's vertices it pinned are
+/// Where the second cut crossed a first interface or three pieces met,
+/// the vertices within this many edges of the vertices pinned there are
 /// remeshed once more. Four rings lifted fandisk in 8 parts to mean-min
 /// 50.37° and eight to 50.52° (50.28° whole), joint in 4 parts from 49.90°
 /// to 50.12° (49.95° whole).

@@ -32,6 +32,15 @@ pub(super) struct PartWork {
     pub(super) shrunk: Vec<f64>,
 }
 
+/// A start's pinned vertices: per vertex its pinned id or [`NONE`], and
+/// the lowest part holding it (which alone may join two pinned vertices
+/// anew: [`Remeshing::may_join`](super::super::remeshing::Remeshing::may_join)).
+#[derive(Clone, Copy)]
+pub(super) struct Pins<'a> {
+    pub(super) id: &'a [u32],
+    pub(super) lowest: &'a [u32],
+}
+
 /// One part's piece of the mesh, in the whole's triangle ids, and each
 /// vertex's pinned id (its index in the start) or [`NONE`]; and the
 /// shrink factors its tolerance rounds left on its own control triangles
@@ -101,14 +110,14 @@ impl PartWork {
     }
 
     /// Remeshes part `p`'s piece of `start` (whose triangle t part
-    /// `owner[t]` owns), vertex v pinned where `pins[v]` is not [`NONE`].
-    /// Vertices land only in the triangles that evaluate as in the whole
-    /// (the part's [`Part`] owns them).
+    /// `owner[t]` owns), vertex v pinned where `pins.id[v]` is not
+    /// [`NONE`]. Vertices land only in the triangles that evaluate as in
+    /// the whole (the part's [`Part`] owns them).
     pub(super) fn remesh(
         &self,
         start: &SurfaceMesh,
         owner: &[u32],
-        pins: &[u32],
+        pins: Pins,
         bounds: Option<&[f64]>,
         p: u32,
     ) -> Result<Piece> {
@@ -116,7 +125,8 @@ impl PartWork {
         let placer = Placer::within(&self.surface, &self.whole_face, |t| self.part.is_owned(t));
         let mut work = start::start_from(placer, &piece)?;
         for (i, &g) in ids.iter().enumerate() {
-            work.pinned[i] = pins[g as usize];
+            work.pinned[i] = pins.id[g as usize];
+            work.yields[i] = work.is_pinned(i as u32) && pins.lowest[g as usize] < p;
             if let (true, Some(bounds)) = (work.is_pinned(i as u32), bounds) {
                 work.size_bound[i] = bounds[g as usize];
             }
