@@ -350,7 +350,7 @@ impl<'a> Remesher<'a> {
                 )?;
                 let placer = vertices::Placer::new(self.surface);
                 let mut work = start::start_from(placer, &chart)?;
-                let (deviation, _) = remesh(&mut work, &sizing, tolerance, &budget, None)?;
+                let (deviation, _) = remesh(&mut work, &sizing, tolerance, &budget, None, true)?;
                 Ok(finish::finish(&work, deviation).0)
             }
             k => parts::run(self, k),
@@ -368,10 +368,11 @@ impl<'a> Remesher<'a> {
     }
 }
 
-/// Remeshes `work`: rounds of the passes and a polish; then, under a
-/// tolerance, the chord error measured, and where it is missed the sizes
-/// shrunk and the rounds and polish run again. The sizes start shrunk by
-/// `shrunk` per control triangle, if given. Returns the largest chord error
+/// Remeshes `work`: rounds of the passes (the first shaken if `shake`)
+/// and a polish; then, under a tolerance, the chord error measured, and
+/// where it is missed the sizes shrunk and the rounds and polish run
+/// again. The sizes start shrunk by `shrunk` per control triangle, if
+/// given. Returns the largest chord error
 /// measured (under a tolerance) and the shrink factors at the end.
 fn remesh(
     work: &mut Remeshing,
@@ -379,6 +380,7 @@ fn remesh(
     tolerance: Option<f64>,
     budget: &Budget,
     shrunk: Option<Vec<f64>>,
+    shake: bool,
 ) -> Result<(Option<f64>, Vec<f64>)> {
     let mut shrinking = match shrunk {
         Some(factors) => Shrinking::from_factors(factors),
@@ -386,7 +388,13 @@ fn remesh(
     };
     let mut deviation = None;
     for round in 0..=TOLERANCE_ROUNDS {
-        remesh_rounds(work, sizing, shrinking.factors(), budget, round == 0)?;
+        remesh_rounds(
+            work,
+            sizing,
+            shrinking.factors(),
+            budget,
+            shake && round == 0,
+        )?;
         polish(work);
         let Some(tol) = tolerance else { break };
         let errors = chord_errors(work, tol);

@@ -112,7 +112,14 @@ impl PartWork {
     /// Remeshes part `p`'s piece of `start` (whose triangle t part
     /// `owner[t]` owns), vertex v pinned where `pins.id[v]` is not
     /// [`NONE`]. Vertices land only in the triangles that evaluate as in
-    /// the whole (the part's [`Part`] owns them).
+    /// the whole (the part's [`Part`] owns them). A later pass (`bounds`
+    /// given: each vertex's size from the pass before) starts from a
+    /// remeshed mesh, not from the chart mesh's lattices, and is not
+    /// shaken. bunny00 in 8 parts at five sizes from 0.25% to 0.5% of the
+    /// diagonal, shaken against not: 196 against 108 triangles below 35°
+    /// (57 whole), mean-min 0.03–0.06° higher unshaken, the smallest
+    /// angles no better either way (23.8–29.5° against 20.8–32.7°; whole
+    /// 32.5–34.4°).
     pub(super) fn remesh(
         &self,
         start: &SurfaceMesh,
@@ -138,6 +145,7 @@ impl PartWork {
             self.tolerance,
             &self.budget,
             shrunk,
+            bounds.is_none(),
         )?;
         let (mut mesh, kept) = finish(&work, deviation);
         let pinned = kept.iter().map(|&v| work.pinned[v as usize]).collect();
