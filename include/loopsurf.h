@@ -1003,8 +1003,8 @@ int ls_remesh_job_new(const ls_surface *surface,
 
 // Writes 1 to `*done` when the mesh is made, else 0; and, if `stage` is
 // not NULL, the name of the current stage ("sizes", "first pass",
-// "interface band", "interface crossings", "done", or "failed" once an
-// advance has failed), a static string.
+// "interface band", "interface crossings", "touch-up", "done", or
+// "failed" once an advance has failed), a static string.
 int ls_remesh_job_done(const ls_remesh_job *job, int *done, const char **stage);
 
 // Runs this rank's tasks of the current stage and writes their outcomes

@@ -60,8 +60,8 @@ pub unsafe extern "C" fn ls_remesh_job_new(
 
 /// Writes 1 to `*done` when the mesh is made, else 0; and, if `stage` is
 /// not NULL, the name of the current stage ("sizes", "first pass",
-/// "interface band", "interface crossings", "done", or "failed" once an
-/// advance has failed), a static string.
+/// "interface band", "interface crossings", "touch-up", "done", or
+/// "failed" once an advance has failed), a static string.
 #[no_mangle]
 pub unsafe extern "C" fn ls_remesh_job_done(
     job: *const ls_remesh_job,
@@ -76,6 +76,7 @@ pub unsafe extern "C" fn ls_remesh_job_done(
             "first pass" => c"first pass",
             "interface band" => c"interface band",
             "interface crossings" => c"interface crossings",
+            "touch-up" => c"touch-up",
             "failed" => c"failed",
             _ => c"done",
         };

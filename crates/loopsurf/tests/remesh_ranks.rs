@@ -74,6 +74,7 @@ fn ranks_exchanging_bytes_make_the_threaded_mesh() {
         let (jobs, stages) = by_ranks(&remesher, ranks);
         println!("{ranks} ranks: stages {stages:?}");
         assert!(stages.contains(&"interface crossings"), "{stages:?}");
+        assert!(stages.contains(&"touch-up"), "{stages:?}");
         let mut held = vec![0u32; threaded.triangles.len()];
         for (r, job) in jobs.iter().enumerate() {
             let mesh = job.mesh().unwrap();

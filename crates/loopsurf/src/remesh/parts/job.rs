@@ -16,7 +16,7 @@ use super::cuts::{blobs, control_rings, lowest_part, majority, mesh_rings, piece
 use super::join::{join, kept, sub_mesh, Joined};
 use super::outcome::{Outcome, TaskOutcome};
 use super::work::{run_tasks, PartWork, Pins};
-use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS};
+use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS, TOUCH_UP_BELOW, TOUCH_UP_RINGS};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::partition;
@@ -53,6 +53,9 @@ enum Stage {
     /// The band around the places where the second cut crossed a first
     /// interface or three pieces met, each connected blob uncut.
     Crossings(Box<BandPass>),
+    /// Around the triangles still below [`TOUCH_UP_BELOW`], each connected
+    /// blob touched up uncut (flips and guarded relaxation only).
+    TouchUp(Box<BandPass>),
     Done(SurfaceMesh),
     /// A stage failed to advance: what went wrong.
     Failed(String),
@@ -137,6 +140,7 @@ impl<'a> PartsJob<'a> {
             Stage::First(_) => "first pass",
             Stage::Band(_) => "interface band",
             Stage::Crossings(_) => "interface crossings",
+            Stage::TouchUp(_) => "touch-up",
             Stage::Done(_) => "done",
             Stage::Failed(_) => "failed",
         }
@@ -158,7 +162,7 @@ impl<'a> PartsJob<'a> {
         match &self.stage {
             Stage::Sizes => per_part(&self.first_parts, self.k),
             Stage::First(f) => f.weights.clone(),
-            Stage::Band(b) | Stage::Crossings(b) => {
+            Stage::Band(b) | Stage::Crossings(b) | Stage::TouchUp(b) => {
                 let count = per_part(&b.owner, b.cover.len());
                 b.parts.iter().map(|&p| count[p as usize]).collect()
             }
@@ -224,6 +228,18 @@ impl<'a> PartsJob<'a> {
                 )?;
                 let piece =
                     work.remesh(&b.pass.mesh, &b.owner, b.pins(), Some(&b.pass.sizes), p)?;
+                Outcome::Piece(Box::new(piece))
+            }
+            Stage::TouchUp(b) => {
+                let p = b.parts[i];
+                let work = PartWork::new(
+                    remesher,
+                    &b.cover[p as usize],
+                    &b.control_owner,
+                    p,
+                    Some(&b.pass.shrunk),
+                )?;
+                let piece = work.touch_up(&b.pass.mesh, &b.owner, b.pins(), &b.pass.sizes, p)?;
                 Outcome::Piece(Box::new(piece))
             }
             Stage::Done(_) | Stage::Failed(_) => unreachable!("no task at the end"),
@@ -309,12 +325,16 @@ impl<'a> PartsJob<'a> {
                     })
                     .collect();
                 if again.contains(&true) {
-                    Stage::Crossings(Box::new(self.crossings_pass(moved, &again)))
+                    Stage::Crossings(Box::new(self.blob_pass(moved, &again, CROSSING_RINGS)))
                 } else {
-                    Stage::Done(moved.mesh)
+                    self.touch_up_or_done(moved)
                 }
             }
             Stage::Crossings(b) => {
+                let keep = kept(&b.pass, &b.owner);
+                self.touch_up_or_done(join_pieces(&self.remesher, vec![keep], outcomes)?)
+            }
+            Stage::TouchUp(b) => {
                 let keep = kept(&b.pass, &b.owner);
                 Stage::Done(join_pieces(&self.remesher, vec![keep], outcomes)?.mesh)
             }
@@ -415,12 +435,32 @@ impl<'a> PartsJob<'a> {
         ))
     }
 
-    /// The last pass over `moved`: the band around the vertices `again`
-    /// (first-interface vertices the second cut pinned again, and corners
-    /// where three pieces met), each connected blob of it one piece, uncut.
-    fn crossings_pass(&self, moved: Joined, again: &[bool]) -> BandPass {
+    /// The touch-up of `pass` where a triangle is below
+    /// [`TOUCH_UP_BELOW`]; done if none is.
+    fn touch_up_or_done(&self, pass: Joined) -> Stage {
+        let quality = pass.mesh.triangle_quality();
+        let mut seeds = vec![false; pass.mesh.points.len()];
+        for (tri, q) in pass.mesh.triangles.iter().zip(&quality) {
+            if q.min_angle < TOUCH_UP_BELOW {
+                for &v in tri {
+                    seeds[v as usize] = true;
+                }
+            }
+        }
+        if seeds.contains(&true) {
+            Stage::TouchUp(Box::new(self.blob_pass(pass, &seeds, TOUCH_UP_RINGS)))
+        } else {
+            Stage::Done(pass.mesh)
+        }
+    }
+
+    /// A pass over `moved`: the band within `rings` edges of the vertices
+    /// `seeds`, each connected blob of it one piece, uncut (for the
+    /// crossings: first-interface vertices the second cut pinned again,
+    /// and corners where three pieces met).
+    fn blob_pass(&self, moved: Joined, seeds: &[bool], rings: usize) -> BandPass {
         let mesh = &moved.mesh;
-        let band = mesh_rings(&mesh.triangles, again, CROSSING_RINGS);
+        let band = mesh_rings(&mesh.triangles, seeds, rings);
         let (owner, count) = blobs(&mesh.triangles, &band);
         let nobody = vec![NONE; self.first_parts.len()];
         BandPass::new(moved, &band, owner, count, nobody, Vec::new())

@@ -26,8 +26,11 @@
 //! cross), the first interface's vertices there are pinned again; so are
 //! the corners where three pieces of the band pass meet (the second cut
 //! at the band's rim, or three parts), whose triangles had every vertex
-//! pinned. A last round remeshes the band around those crossings and
-//! corners, each connected blob as one uncut piece.
+//! pinned. A further round remeshes the band around those crossings and
+//! corners, each connected blob as one uncut piece. Last, the mesh around
+//! each triangle still below [`TOUCH_UP_BELOW`] (at the pinned rims of
+//! those pieces) is touched up, each blob uncut, by flips and relaxation
+//! that make no triangle worse.
 //!
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
@@ -66,6 +69,16 @@ const BAND_RINGS: usize = 4;
 /// 50.37° and eight to 50.52° (50.28° whole), joint in 4 parts from 49.90°
 /// to 50.12° (49.95° whole).
 const CROSSING_RINGS: usize = 8;
+
+/// After the passes, the triangles below this smallest angle (degrees)
+/// are touched up ([`TOUCH_UP_RINGS`] edges around them): the rims of
+/// the band and blob pieces are pinned, and leave a few such triangles
+/// where the whole run has none.
+const TOUCH_UP_BELOW: f64 = 35.0;
+
+/// A touch-up moves the vertices within this many edges of a triangle
+/// below [`TOUCH_UP_BELOW`].
+const TOUCH_UP_RINGS: usize = 2;
 
 /// The second partition avoids cutting the control triangles within this
 /// many vertex rings of those holding a first-pass interface vertex. Two

@@ -4,7 +4,9 @@
 
 use super::super::budget::Budget;
 use super::super::finish::{finish, without_curves};
+use super::super::remeshing::Remeshing;
 use super::super::sizing::Sizing;
+use super::super::tolerance::chord_errors;
 use super::super::vertices::Placer;
 use super::super::{remesh, start, Remesher};
 use super::cuts::fans;
@@ -16,6 +18,10 @@ use crate::surface::Surface;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
+
+/// Rounds of max–min flips and guarded relaxation in a touch-up
+/// ([`PartWork::touch_up`]).
+const TOUCH_UP_ROUNDS: usize = 3;
 
 /// One part being remeshed: its sub-net's surface and its sizes.
 pub(super) struct PartWork {
@@ -128,14 +134,12 @@ impl PartWork {
         bounds: Option<&[f64]>,
         p: u32,
     ) -> Result<Piece> {
-        let (piece, ids) = self.start_piece(start, owner, p)?;
-        let placer = Placer::within(&self.surface, &self.whole_face, |t| self.part.is_owned(t));
-        let mut work = start::start_from(placer, &piece)?;
-        for (i, &g) in ids.iter().enumerate() {
-            work.pinned[i] = pins.id[g as usize];
-            work.yields[i] = work.is_pinned(i as u32) && pins.lowest[g as usize] < p;
-            if let (true, Some(bounds)) = (work.is_pinned(i as u32), bounds) {
-                work.size_bound[i] = bounds[g as usize];
+        let (mut work, ids) = self.start_work(start, owner, pins, p)?;
+        if let Some(bounds) = bounds {
+            for (i, &g) in ids.iter().enumerate() {
+                if work.is_pinned(i as u32) {
+                    work.size_bound[i] = bounds[g as usize];
+                }
             }
         }
         let shrunk = Some(self.shrunk.clone());
@@ -147,7 +151,78 @@ impl PartWork {
             shrunk,
             bounds.is_none(),
         )?;
-        let (mut mesh, kept) = finish(&work, deviation);
+        Ok(self.piece(&work, deviation, &factors))
+    }
+
+    /// Touches up part `p`'s piece of `start` without remeshing it: max–min
+    /// angle flips and relaxation that keeps only the moves leaving a
+    /// vertex's smallest angle no smaller, at the sizes `sizes` the passes
+    /// before left. So no triangle gets worse, and a triangle that sat at
+    /// the pinned rim of an earlier piece, now inside this one, can open.
+    /// Under a tolerance, the piece comes back untouched if touching it
+    /// would take its chord error past both the tolerance and what it was.
+    pub(super) fn touch_up(
+        &self,
+        start: &SurfaceMesh,
+        owner: &[u32],
+        pins: Pins,
+        sizes: &[f64],
+        p: u32,
+    ) -> Result<Piece> {
+        let begin = || -> Result<Remeshing<'_>> {
+            let (mut work, ids) = self.start_work(start, owner, pins, p)?;
+            for (i, &g) in ids.iter().enumerate() {
+                work.size[i] = sizes[g as usize];
+            }
+            Ok(work)
+        };
+        let worst = |work: &Remeshing, tol: f64| {
+            chord_errors(work, tol)
+                .iter()
+                .map(|e| e.1)
+                .fold(0.0, f64::max)
+        };
+        let mut work = begin()?;
+        let before = self.tolerance.map(|tol| worst(&work, tol));
+        for _ in 0..TOUCH_UP_ROUNDS {
+            work.flip_for_angles();
+            work.relax_guarded();
+        }
+        let (work, deviation) = match (self.tolerance, before) {
+            (Some(tol), Some(before)) => match worst(&work, tol) {
+                after if after <= tol.max(before) => (work, Some(after)),
+                _ => (begin()?, Some(before)),
+            },
+            _ => (work, None),
+        };
+        let factors = vec![1.0; self.part.global_triangles().len()];
+        Ok(self.piece(&work, deviation, &factors))
+    }
+
+    /// The remeshing of part `p`'s piece of `start` as it starts, its
+    /// vertices pinned as `pins` says, and each vertex's id in `start`.
+    fn start_work(
+        &self,
+        start: &SurfaceMesh,
+        owner: &[u32],
+        pins: Pins,
+        p: u32,
+    ) -> Result<(Remeshing<'_>, Vec<u32>)> {
+        let (piece, ids) = self.start_piece(start, owner, p)?;
+        let placer = Placer::within(&self.surface, &self.whole_face, |t| self.part.is_owned(t));
+        let mut work = start::start_from(placer, &piece)?;
+        for (i, &g) in ids.iter().enumerate() {
+            work.pinned[i] = pins.id[g as usize];
+            work.yields[i] = work.is_pinned(i as u32) && pins.lowest[g as usize] < p;
+        }
+        Ok((work, ids))
+    }
+
+    /// The piece `work` has made, in the whole's triangle ids, with the
+    /// shrink factors `factors` (per local triangle) below 1 on the
+    /// triangles the part owns.
+    fn piece(&self, work: &Remeshing, deviation: Option<f64>, factors: &[f64]) -> Piece {
+        let (mut mesh, kept) = finish(work, deviation);
         let pinned = kept.iter().map(|&v| work.pinned[v as usize]).collect();
         let sizes = kept.iter().map(|&v| work.size[v as usize]).collect();
         let globals = self.part.global_triangles();
@@ -158,12 +233,12 @@ impl PartWork {
             .filter(|&t| self.owned[t] && factors[t] < 1.0)
             .map(|t| (globals[t], factors[t]))
             .collect();
-        Ok(Piece {
+        Piece {
             mesh,
             pinned,
             sizes,
             shrunk,
-        })
+        }
     }
 
     /// Part `p`'s triangles of `start` in local terms (faces stay the
