@@ -217,7 +217,7 @@ impl<'a> PartsJob<'a> {
                     i as u32,
                 )?))
             }
-            Stage::Band(b) | Stage::Crossings(b) => {
+            Stage::Band(b) | Stage::Crossings(b) | Stage::TouchUp(b) => {
                 let p = b.parts[i];
                 let work = PartWork::new(
                     remesher,
@@ -226,20 +226,11 @@ impl<'a> PartsJob<'a> {
                     p,
                     Some(&b.pass.shrunk),
                 )?;
-                let piece =
-                    work.remesh(&b.pass.mesh, &b.owner, b.pins(), Some(&b.pass.sizes), p)?;
-                Outcome::Piece(Box::new(piece))
-            }
-            Stage::TouchUp(b) => {
-                let p = b.parts[i];
-                let work = PartWork::new(
-                    remesher,
-                    &b.cover[p as usize],
-                    &b.control_owner,
-                    p,
-                    Some(&b.pass.shrunk),
-                )?;
-                let piece = work.touch_up(&b.pass.mesh, &b.owner, b.pins(), &b.pass.sizes, p)?;
+                let (start, owner, pins, sizes) = (&b.pass.mesh, &b.owner, b.pins(), &b.pass.sizes);
+                let piece = match self.stage {
+                    Stage::TouchUp(_) => work.touch_up(start, owner, pins, sizes, p)?,
+                    _ => work.remesh(start, owner, pins, Some(sizes), p)?,
+                };
                 Outcome::Piece(Box::new(piece))
             }
             Stage::Done(_) | Stage::Failed(_) => unreachable!("no task at the end"),
