@@ -41,7 +41,6 @@ fn fandisk_in_parts_is_one_mesh_on_the_whole_surface() {
     };
     let diagonal = net.bbox_diagonal();
     let whole = remesh(&surface, 1, 2);
-    let whole_quality = whole.quality();
     let whole_curves: HashSet<u32> = whole.hard_edge_curves.iter().copied().collect();
     for k in [3, 8] {
         let what = format!("fandisk in {k} parts");
@@ -90,16 +89,8 @@ fn fandisk_in_parts_is_one_mesh_on_the_whole_surface() {
         let curves: HashSet<u32> = mesh.hard_edge_curves.iter().copied().collect();
         assert_eq!(curves, whole_curves, "{what}: curves with hard edges");
 
-        let quality = mesh.quality();
-        let count = mesh.triangles.len() as f64 / whole.triangles.len() as f64;
         println!(
-            "{what}: {} triangles ({count:.4} of whole), mean-min {:.2}° (whole {:.2}°), min {:.2}° (whole {:.2}°), below 20° {:.3}%, chord {:.2e}, closest vertices {:.2e} of the diagonal",
-            mesh.triangles.len(),
-            quality.mean_min_angle,
-            whole_quality.mean_min_angle,
-            quality.min_angle,
-            whole_quality.min_angle,
-            100.0 * quality.below_20,
+            "{what}: chord {:.2e}, closest vertices {:.2e} of the diagonal",
             chord / diagonal,
             closest / diagonal
         );
@@ -112,6 +103,7 @@ fn fandisk_in_parts_is_one_mesh_on_the_whole_surface() {
 /// smallest angle no more than 2° lower, and no triangle below 20° where
 /// the whole run has none.
 fn assert_as_good_as_whole(mesh: &SurfaceMesh, whole: &SurfaceMesh, what: &str) {
+    print_against_whole(mesh, whole, what);
     let (q, w) = (mesh.quality(), whole.quality());
     let count = mesh.triangles.len() as f64 / whole.triangles.len() as f64;
     assert!(
@@ -135,6 +127,22 @@ fn assert_as_good_as_whole(mesh: &SurfaceMesh, whole: &SurfaceMesh, what: &str) 
     }
 }
 
+/// Prints `mesh`'s triangle count and angles beside the whole run's.
+fn print_against_whole(mesh: &SurfaceMesh, whole: &SurfaceMesh, what: &str) {
+    let (q, w) = (mesh.quality(), whole.quality());
+    println!(
+        "{what}: {} triangles (whole {}), mean-min {:.2}° (whole {:.2}°), min {:.2}° (whole {:.2}°), below 20° {:.3}% (whole {:.3}%)",
+        mesh.triangles.len(),
+        whole.triangles.len(),
+        q.mean_min_angle,
+        w.mean_min_angle,
+        q.min_angle,
+        w.min_angle,
+        100.0 * q.below_20,
+        100.0 * w.below_20
+    );
+}
+
 /// bunny00 (smooth, closed) at the bench's size, 0.3% of the diagonal, in
 /// 8 parts against whole.
 #[test]
@@ -147,16 +155,6 @@ fn bunny_in_8_parts_against_whole() {
     let h = 0.003 * net.bbox_diagonal();
     let run = |k: usize| Remesher::new(&surface).size(h).parts(k).run().unwrap();
     let (whole, parts) = (run(1), run(8));
-    let (q, w) = (parts.quality(), whole.quality());
-    println!(
-        "bunny00 at 0.3%: {} triangles in 8 parts ({} whole), mean-min {:.2}° ({:.2}°), min {:.2}° ({:.2}°)",
-        parts.triangles.len(),
-        whole.triangles.len(),
-        q.mean_min_angle,
-        w.mean_min_angle,
-        q.min_angle,
-        w.min_angle
-    );
     assert_eq!(boundary_loops(&parts, "bunny00 in 8 parts"), 0);
     assert_as_good_as_whole(&parts, &whole, "bunny00 in 8 parts");
 }
@@ -214,20 +212,11 @@ fn an_open_creased_surface_in_parts_has_the_whole_runs_boundary() {
     for (p, at) in parts.points.iter().zip(&parts.params) {
         assert_eq!(surface.point(at.tri as usize, at.v, at.w).unwrap(), *p);
     }
-    let (q, w) = (parts.quality(), whole.quality());
-    println!(
-        "pig in 5 parts: {} triangles (whole {}), mean-min {:.2}° (whole {:.2}°), min {:.2}° (whole {:.2}°)",
-        parts.triangles.len(),
-        whole.triangles.len(),
-        q.mean_min_angle,
-        w.mean_min_angle,
-        q.min_angle,
-        w.min_angle
-    );
+    print_against_whole(&parts, &whole, "pig in 5 parts");
 }
 
-/// anchor.off (adapted, as `loopsurf mesh` does by default), whose surface folds and crosses itself around its fans, in
-/// 3 and 4 parts: one closed manifold mesh, every directed edge once, every
+/// anchor.off (adapted, as `loopsurf mesh` does by default), whose
+/// surface folds and crosses itself around its fans, in 3 and 4 parts: one closed manifold mesh, every directed edge once, every
 /// vertex the surface at its parameters. Where the surface folds, both
 /// sides of an interface see one corner as convex; each piece used to cut
 /// it with the same new edge, and the band pass refused the joined mesh

@@ -372,8 +372,8 @@ impl<'a> Remesher<'a> {
 /// and a polish; then, under a tolerance, the chord error measured, and
 /// where it is missed the sizes shrunk and the rounds and polish run
 /// again. The sizes start shrunk by `shrunk` per control triangle, if
-/// given. Returns the largest chord error
-/// measured (under a tolerance) and the shrink factors at the end.
+/// given. Returns the largest chord error measured (under a tolerance)
+/// and the shrink factors at the end.
 fn remesh(
     work: &mut Remeshing,
     sizing: &Sizing,

@@ -12,7 +12,7 @@
 //! ([`super::outcome`]) to every rank, and advances with all of them: the
 //! mesh is the threaded one, bit for bit, on any number of ranks.
 
-use super::cuts::{blobs, control_rings, lowest_part, majority, mesh_rings, pieces_meeting};
+use super::cuts::{blobs, control_rings, majority, mesh_rings, pieces_meeting};
 use super::join::{join, kept, sub_mesh, Joined};
 use super::outcome::{Outcome, TaskOutcome};
 use super::work::{run_tasks, PartWork, Pins};
@@ -65,10 +65,8 @@ struct FirstPass {
     chart: SurfaceMesh,
     /// Per chart triangle: its part.
     owner: Vec<u32>,
-    /// Per chart vertex: itself where two parts share it, else [`NONE`].
-    pins: Vec<u32>,
-    /// Per chart vertex: the lowest part holding it.
-    lowest: Vec<u32>,
+    /// The chart vertices two parts share, pinned.
+    pins: Pins,
     shared: Vec<bool>,
     /// Per part: the triangles its sizes ask for, what its task weighs.
     weights: Vec<usize>,
@@ -87,9 +85,7 @@ struct BandPass {
     /// Per control triangle: the part whose sub-net owns it (for its
     /// shrink factors), or [`NONE`].
     control_owner: Vec<u32>,
-    pins: Vec<u32>,
-    /// Per vertex of the mesh: the lowest part holding it.
-    lowest: Vec<u32>,
+    pins: Pins,
     /// Per vertex of the mesh: how many pieces meet there (up to 3), the
     /// triangles no part remeshes one piece.
     meeting: Vec<u8>,
@@ -209,13 +205,9 @@ impl<'a> PartsJob<'a> {
                         &built
                     }
                 };
-                Outcome::Piece(Box::new(work.remesh(
-                    &f.chart,
-                    &f.owner,
-                    f.pins(),
-                    None,
-                    i as u32,
-                )?))
+                Outcome::Piece(Box::new(
+                    work.remesh(&f.chart, &f.owner, &f.pins, None, i as u32)?,
+                ))
             }
             Stage::Band(b) | Stage::Crossings(b) | Stage::TouchUp(b) => {
                 let p = b.parts[i];
@@ -226,7 +218,7 @@ impl<'a> PartsJob<'a> {
                     p,
                     Some(&b.pass.shrunk),
                 )?;
-                let (start, owner, pins, sizes) = (&b.pass.mesh, &b.owner, b.pins(), &b.pass.sizes);
+                let (start, owner, pins, sizes) = (&b.pass.mesh, &b.owner, &b.pins, &b.pass.sizes);
                 let piece = match self.stage {
                     Stage::TouchUp(_) => work.touch_up(start, owner, pins, sizes, p)?,
                     _ => work.remesh(start, owner, pins, Some(sizes), p)?,
@@ -370,15 +362,11 @@ impl<'a> PartsJob<'a> {
             .iter()
             .map(|&m| m >= 2)
             .collect();
-        let pins = (0..chart.points.len() as u32)
-            .map(|v| if shared[v as usize] { v } else { NONE })
-            .collect();
-        let lowest = lowest_part(&chart.triangles, &owner, chart.points.len());
+        let pins = Pins::new(&chart.triangles, &owner, chart.points.len(), |v| shared[v]);
         Ok(FirstPass {
             chart,
             owner,
             pins,
-            lowest,
             shared,
             weights,
         })
@@ -516,23 +504,7 @@ impl<'a> PartsJob<'a> {
     }
 }
 
-impl FirstPass {
-    fn pins(&self) -> Pins<'_> {
-        Pins {
-            id: &self.pins,
-            lowest: &self.lowest,
-        }
-    }
-}
-
 impl BandPass {
-    fn pins(&self) -> Pins<'_> {
-        Pins {
-            id: &self.pins,
-            lowest: &self.lowest,
-        }
-    }
-
     /// The pass over `pass.mesh`'s triangles that `owner` gives one of
     /// `k` parts, every vertex outside `band` and every vertex two parts
     /// share pinned; part p's sub-net owns the control triangles t with
@@ -547,16 +519,9 @@ impl BandPass {
     ) -> BandPass {
         let mesh = &pass.mesh;
         let meeting = pieces_meeting(&mesh.triangles, &owner, mesh.points.len());
-        let lowest = lowest_part(&mesh.triangles, &owner, mesh.points.len());
-        let pins = (0..mesh.points.len() as u32)
-            .map(|v| {
-                if meeting[v as usize] >= 2 || !band[v as usize] {
-                    v
-                } else {
-                    NONE
-                }
-            })
-            .collect();
+        let pins = Pins::new(&mesh.triangles, &owner, mesh.points.len(), |v| {
+            meeting[v] >= 2 || !band[v]
+        });
         let mut cover: Vec<Vec<u32>> = vec![Vec::new(); k];
         for (tri, &p) in mesh.triangles.iter().zip(&owner) {
             if p != NONE {
@@ -573,7 +538,6 @@ impl BandPass {
             cover,
             control_owner,
             pins,
-            lowest,
             meeting,
             old,
         }

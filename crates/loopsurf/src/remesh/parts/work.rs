@@ -9,12 +9,13 @@ use super::super::sizing::Sizing;
 use super::super::tolerance::chord_errors;
 use super::super::vertices::Placer;
 use super::super::{remesh, start, Remesher};
-use super::cuts::fans;
+use super::cuts::{fans, lowest_part};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::parameters::SurfacePoint;
 use crate::partition::Part;
 use crate::surface::Surface;
+use crate::topology::NONE;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -38,13 +39,31 @@ pub(super) struct PartWork {
     pub(super) shrunk: Vec<f64>,
 }
 
-/// A start's pinned vertices: per vertex its pinned id or [`NONE`], and
-/// the lowest part holding it (which alone may join two pinned vertices
-/// anew: [`Remeshing::may_join`](super::super::remeshing::Remeshing::may_join)).
-#[derive(Clone, Copy)]
-pub(super) struct Pins<'a> {
-    pub(super) id: &'a [u32],
-    pub(super) lowest: &'a [u32],
+/// A start's pinned vertices: per vertex its pinned id (itself) or
+/// [`NONE`], and the lowest part holding it (which alone may join two
+/// pinned vertices anew:
+/// [`Remeshing::may_join`](super::super::remeshing::Remeshing::may_join)).
+pub(super) struct Pins {
+    pub(super) id: Vec<u32>,
+    pub(super) lowest: Vec<u32>,
+}
+
+impl Pins {
+    /// The `n` vertices of a start whose triangle t part `owner[t]` holds,
+    /// pinned where `pinned(v)`.
+    pub(super) fn new(
+        triangles: &[[u32; 3]],
+        owner: &[u32],
+        n: usize,
+        pinned: impl Fn(usize) -> bool,
+    ) -> Pins {
+        Pins {
+            id: (0..n as u32)
+                .map(|v| if pinned(v as usize) { v } else { NONE })
+                .collect(),
+            lowest: lowest_part(triangles, owner, n),
+        }
+    }
 }
 
 /// One part's piece of the mesh, in the whole's triangle ids, and each
@@ -130,7 +149,7 @@ impl PartWork {
         &self,
         start: &SurfaceMesh,
         owner: &[u32],
-        pins: Pins,
+        pins: &Pins,
         bounds: Option<&[f64]>,
         p: u32,
     ) -> Result<Piece> {
@@ -165,7 +184,7 @@ impl PartWork {
         &self,
         start: &SurfaceMesh,
         owner: &[u32],
-        pins: Pins,
+        pins: &Pins,
         sizes: &[f64],
         p: u32,
     ) -> Result<Piece> {
@@ -205,7 +224,7 @@ impl PartWork {
         &self,
         start: &SurfaceMesh,
         owner: &[u32],
-        pins: Pins,
+        pins: &Pins,
         p: u32,
     ) -> Result<(Remeshing<'_>, Vec<u32>)> {
         let (piece, ids) = self.start_piece(start, owner, p)?;
