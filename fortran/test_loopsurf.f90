@@ -479,7 +479,7 @@ contains
         call check(ls_net_tag_by_angle(oct, 30d0, tagged) == LS_OK, "fit: tag")
         call check(tagged == 12, "fit: 12 tagged")
         call check(ls_fit_options_default(fo) == LS_OK, "fit options")
-        call check(fo%resolution == 0.015d0 .and. fo%tolerance == 1d-4, "fit options: defaults")
+        call check(fo%resolution == 0.01d0 .and. fo%tolerance == 1d-4, "fit options: defaults")
         call check(ls_net_fit(oct, fo, fitted) == LS_OK, "fit")
         call check(ls_net_counts(fitted, fv, ft, fh) == LS_OK, "fitted counts")
         call check(fv > 100 .and. ft == 2 * fv - 4 .and. fh >= 12, "fitted counts: values")

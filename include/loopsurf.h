@@ -187,7 +187,7 @@ typedef struct {
   // `sizeof(ls_fit_options)` as the caller was compiled with.
   size_t struct_size;
   // Control-edge length of the fitted net relative to the bounding-box
-  // diagonal, in (0, 1). Default 0.015.
+  // diagonal, in (0, 1). Default 0.01.
   double resolution;
   // The largest distance from the fitted limit surface to an input
   // vertex, relative to the bounding-box diagonal (> 0); a fit that

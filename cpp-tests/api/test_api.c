@@ -1928,7 +1928,7 @@ static void test_fit(void) {
     EXPECT(ls_net_tag_by_angle(net, 30, NULL), LS_OK);
     ls_fit_options o;
     EXPECT(ls_fit_options_default(&o), LS_OK);
-    CHECK(o.struct_size == sizeof o && o.resolution == 0.015 && o.tolerance == 1e-4);
+    CHECK(o.struct_size == sizeof o && o.resolution == 0.01 && o.tolerance == 1e-4);
     ls_net* fitted = NULL;
     EXPECT(ls_net_fit(net, NULL, &fitted), LS_OK);
     size_t nv = 0, nt = 0, nh = 0;

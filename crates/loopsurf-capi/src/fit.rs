@@ -15,7 +15,7 @@ pub struct ls_fit_options {
     /// `sizeof(ls_fit_options)` as the caller was compiled with.
     pub struct_size: usize,
     /// Control-edge length of the fitted net relative to the bounding-box
-    /// diagonal, in (0, 1). Default 0.015.
+    /// diagonal, in (0, 1). Default 0.01.
     pub resolution: f64,
     /// The largest distance from the fitted limit surface to an input
     /// vertex, relative to the bounding-box diagonal (> 0); a fit that

@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     #[command(flatten)]
     input: Input,
-    /// Control-edge length of the fitted net, model units (default 0.015 of
-    /// the bounding-box diagonal).
+    /// Control-edge length of the fitted net, model units (default 0.01 of
+    /// the bounding-box diagonal; remeshed at twice it, subdivided once).
     #[arg(long, value_name = "H", allow_negative_numbers = true)]
     resolution: Option<f64>,
     /// Largest distance from the fitted surface to an input vertex, as a

@@ -1,7 +1,8 @@
 //! The fitted surrogate (`loopsurf::fit`) against the exact surfaces of
 //! the CAD shapes (`loopsurf::cad`), never against the fit's own report.
 //! Bounds are pinned as measured (docs/fitting.md; the default resolution
-//! of 0.015 of the diagonal since 2026-12-02): a change that makes the fit
+//! of 0.01 of the diagonal, remeshed at 0.02 and subdivided once, since
+//! 2026-12-03): a change that makes the fit
 //! worse fails here; one that makes it better tightens them.
 
 mod common;
@@ -34,16 +35,20 @@ fn sphere_is_closer_than_its_facets() {
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     assert!(d.max <= facets.max / 5.0, "{d:?} against {facets:?}");
     assert!(d.mean <= facets.mean / 10.0, "{d:?} against {facets:?}");
-    // Pinned as measured: 3.5e-5 / 1.8e-6.
-    assert!(d.max <= 3.7e-5 && d.mean <= 1.9e-6, "{d:?}");
+    // Pinned as measured: 8.7e-6 / 1.73e-6 (3.5e-5 / 1.8e-6 on a net
+    // remeshed at 0.015 of the diagonal with data predicted at its
+    // spacing; 1.28e-5 / 1.62e-6 with data at half of it).
+    assert!(d.max <= 9.2e-6 && d.mean <= 1.8e-6, "{d:?}");
     let k = cad::curvature_error(&shape, &surface, LATTICE, 0.1)
         .unwrap()
         .unwrap();
     assert!(k.mean <= 0.05, "{k:?}");
-    // Pinned as measured: 63.5% / 2.37% (20.5% / 1.70% on the twice
-    // coarser net of the earlier default: a finer net fitted to the same
-    // data is less smooth in its second derivatives).
-    assert!(k.max <= 0.66 && k.mean <= 0.025, "{k:?}");
+    // Pinned as measured: 32.2% / 2.44% (63.5% / 2.37% on a net remeshed
+    // at 0.015 of the diagonal with data predicted at its spacing, 30.8% /
+    // 2.29% with data at half of it; 20.5% / 1.70% on a net remeshed at
+    // 0.03: a finer net fitted to the same data is less smooth in its
+    // second derivatives).
+    assert!(k.max <= 0.34 && k.mean <= 0.026, "{k:?}");
     assert!(folds::folded_patches(&surface).is_empty());
     let mesh = Remesher::new(&surface).tolerance(1e-4).run().unwrap();
     assert!(mesh.triangles.len() > 1000);
@@ -106,16 +111,20 @@ fn cylinder_rims_on_the_true_edges() {
         d.max <= facets.max / 5.0 && d.mean <= facets.mean / 10.0,
         "{d:?} against {facets:?}"
     );
-    // Pinned as measured: 6.3e-5 / 3.6e-6 (fitted to the vertices alone it
-    // was 1.1e-3 / 4.3e-4).
-    assert!(d.max <= 6.6e-5 && d.mean <= 3.8e-6, "{d:?}");
+    // Pinned as measured: 6.7e-5 / 2.0e-6 (6.3e-5 / 3.6e-6 on a net
+    // remeshed at 0.015 of the diagonal with data predicted at its
+    // spacing, 5.3e-5 / 3.0e-6 with data at half of it: the subdivided
+    // net is 26% farther at the worst, beside the rim, and 34% closer on
+    // average; fitted to the vertices alone it was 1.1e-3 / 4.3e-4).
+    assert!(d.max <= 7.0e-5 && d.mean <= 2.1e-6, "{d:?}");
 }
 
 /// The cone's apex, a fan of slivers that no dihedral angle marks, is
 /// found and kept as a corner: the fitted surface reaches the true apex,
 /// and strays from the true cone less than when the apex is rounded off
 /// (5.5e-2 of the diagonal): on average 5× closer than the facets, whose
-/// slivers lie on the cone's rulings; at the worst, beside the apex, not.
+/// slivers lie on the cone's rulings; at the worst, beside the apex, only
+/// 1.7× (the goal's 5× is missed: docs/fitting.md says why).
 #[test]
 fn cone_apex_is_kept() {
     let shape = cad::cone(CHORD, ANGLE);
@@ -139,37 +148,57 @@ fn cone_apex_is_kept() {
     let ex = shape.tessellation();
     let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
     assert!(d.mean <= facets.mean / 5.0, "{d:?} against {facets:?}");
-    // Pinned as measured: 6.0e-4 / 7.8e-6 (3.8e-3 / 7.2e-5 while the start
-    // net closed the apex with three triangles, 1.5e-3 / 6.6e-5 while the
-    // curves predicted along the rulings left the apex tilted, 9.4e-4 /
-    // 7.3e-6 with six triangles around the apex: sixteen cost the mean 7%).
-    assert!(d.max <= 6.3e-4 && d.mean <= 8.2e-6, "{d:?}");
+    // Pinned as measured: 1.87e-4 / 7.23e-6 (3.8e-3 / 7.2e-5 while the
+    // start net closed the apex with three triangles, 1.5e-3 / 6.6e-5
+    // while the curves predicted along the rulings left the apex tilted,
+    // 9.4e-4 / 7.3e-6 with six triangles around the apex, 6.0e-4 / 7.8e-6
+    // with sixteen on a net remeshed at 0.015 of the diagonal: the cusp
+    // that Loop's surface makes at the tip is as wide as the apex's ring,
+    // which the subdivided net halves).
+    assert!(d.max <= 2.0e-4 && d.mean <= 7.6e-6, "{d:?}");
 }
 
-/// Where fillets meet flat faces and on the torus, the fit is 2× closer
-/// than the facets at the worst and 5× on average; the goal's 5× at the
-/// worst is missed (docs/fitting.md says where). Pinned as measured.
+/// On the torus the fit meets the goals: 5× closer than the facets at
+/// the worst and 10× on average (3.0e-5 / 1.3e-6 against 4.0e-4 /
+/// 1.4e-4; 1.1e-4 / 8.1e-6 on a net remeshed at 0.015 of the diagonal
+/// with data predicted at its spacing, 6.2e-5 / 6.0e-6 with data at half
+/// of it: beside the remeshed net's irregular vertices a Loop surface
+/// cannot bend as a torus does, and a subdivided net has fewer of them).
+/// Pinned as measured.
+#[test]
+fn torus_is_closer_than_its_facets() {
+    let shape = cad::torus(CHORD, ANGLE);
+    let ex = shape.tessellation();
+    let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
+    let d = cad::surrogate_distance(&shape, &fitted(&shape), LATTICE).unwrap();
+    assert!(d.max <= facets.max / 5.0, "{d:?} against {facets:?}");
+    assert!(d.mean <= facets.mean / 10.0, "{d:?} against {facets:?}");
+    assert!(d.max <= 3.2e-5 && d.mean <= 1.4e-6, "{d:?}");
+}
+
+/// Where fillets meet flat faces and a cylinder, the fit meets the goal
+/// at the worst: 5× closer than the facets (filleted box 6.8e-5 against
+/// 4.3e-4, cyl-plate 8.8e-5 against 4.8e-4), and on average 9.5× and 16×
+/// (the goal's 10× is missed on the box by a whisker). Pinned as
+/// measured: 6.79e-5 / 1.87e-5 and 8.83e-5 / 8.31e-6 (1.5e-4 / 2.3e-5 and
+/// 2.0e-4 / 1.3e-5 on a net remeshed at 0.015 of the diagonal with data
+/// predicted at its spacing).
 #[test]
 fn blends_closer_than_facets() {
     for (shape, max, mean) in [
         (
-            Box::new(cad::torus(CHORD, ANGLE)) as Box<dyn Analytic>,
-            1.15e-4,
-            8.5e-6,
+            Box::new(cad::FilletedBox::new(CHORD, ANGLE)) as Box<dyn Analytic>,
+            7.1e-5,
+            1.95e-5,
         ),
-        (
-            Box::new(cad::FilletedBox::new(CHORD, ANGLE)),
-            1.6e-4,
-            2.4e-5,
-        ),
-        (Box::new(cad::cylinder_plate(CHORD, ANGLE)), 2.1e-4, 1.4e-5),
+        (Box::new(cad::cylinder_plate(CHORD, ANGLE)), 9.2e-5, 8.7e-6),
     ] {
         let ex = shape.tessellation();
         let facets = cad::facet_distance(shape.as_ref(), &ex.points, &ex.tris, LATTICE);
         let d = cad::surrogate_distance(shape.as_ref(), &fitted(shape.as_ref()), LATTICE).unwrap();
         let name = shape.name();
         assert!(
-            d.max <= facets.max / 2.0 && d.mean <= facets.mean / 5.0,
+            d.max <= facets.max / 5.0 && d.mean <= facets.mean / 9.0,
             "{name}: {d:?} against {facets:?}"
         );
         assert!(d.max <= max && d.mean <= mean, "{name}: {d:?}");

@@ -12,11 +12,11 @@
 //! 1. [`apex`]: cone apexes, which no dihedral angle marks, and [`kink`]:
 //!    crease vertices where the crease turns sharply, are tagged as
 //!    corners. [`start`]: the control net is the input's approximating
-//!    surface remeshed by [`crate::Remesher`] at the chosen size, its
-//!    crease chains and corners tagged, so the new creases lie on the
-//!    input's feature lines.
+//!    surface remeshed by [`crate::Remesher`] at twice the chosen size,
+//!    its crease chains and corners tagged, so the new creases lie on the
+//!    input's feature lines, and subdivided once.
 //! 2. [`data`]: the data are the input's vertices and, where the input's
-//!    edges and triangles are longer than the net's spacing, points
+//!    edges and triangles are longer than half the net's spacing, points
 //!    predicted between them from the tangent planes at the vertices
 //!    ([`samples`]); those on hard edges and corners are fitted by the
 //!    crease curves, the rest by the surface. Each round projects every
@@ -60,32 +60,50 @@ use glam::DVec3;
 use std::time::Instant;
 
 /// The default control-edge length, relative to the input's diagonal.
-/// Measured on the CAD shapes of docs/fitting.md: at 0.03 the fit of a
-/// filleted box and of a cylinder blended into a plate overshoots the
-/// seams where fillets meet flat faces (a surface as smooth as Loop's
-/// misses a jump in curvature by about the jump times the spacing
-/// squared) and the torus misses its data beside irregular control
-/// vertices; at 0.015 every shape was closer at its worst but the sphere
-/// (4.0e-5 to 8.6e-5, back to 3.5e-5 once the data between vertices were
-/// predicted along seams), for four times the control triangles; at 0.01
-/// the box and the torus are closer still but a fit takes three times as
-/// long again.
-pub const DEFAULT_RESOLUTION: f64 = 0.015;
+/// The net is remeshed at twice this length and subdivided once
+/// ([`start`]). Measured on the CAD shapes of docs/fitting.md: at 0.03 (a
+/// remeshed net, not subdivided) the fit of a filleted box and of a
+/// cylinder blended into a plate overshoots the seams where fillets meet
+/// flat faces (a surface as smooth as Loop's misses a jump in curvature by
+/// about the jump times the spacing squared) and the torus misses its
+/// data beside irregular control vertices; at 0.015 every shape was closer
+/// at its worst but the sphere, for four times the control triangles. At
+/// 0.01, remeshed at 0.02 and subdivided, the box and the cyl-plate come
+/// within a fifth of the facets' distance at their worst (6.8e-5 and
+/// 8.8e-5 of the diagonal, against 1.2e-4 and 1.7e-4 at 0.015 remeshed);
+/// the subdivided net at 0.0075 was closer still on the torus and box but
+/// fitted the 110 000-triangle sphere in more than 10 s on one thread.
+pub const DEFAULT_RESOLUTION: f64 = 0.01;
 /// The default tolerance on the distance to every input vertex, relative
 /// to the diagonal: a fifth of a typical CAD chord tolerance (5e-4).
 pub const DEFAULT_TOLERANCE: f64 = 1e-4;
-/// The fairness weight of each round, per datum at the default resolution
-/// ([`fairness_weight`] scales it for others): strong first, when the
-/// footpoints are poor, then weighted down as the fit converges. The last
-/// rounds keep 4e-3, which is what keeps the net from wiggling where the
-/// data are sparse; at the default resolution half or two and a half
-/// times the weights fit the CAD shapes within 20% of the same distances.
+/// The fairness weight of each round, per datum at a spacing of
+/// [`LAMBDA_SPACING`] ([`fairness_weight`] scales it for others): strong
+/// first, when the footpoints are poor, then weighted down as the fit
+/// converges. The last rounds keep 4e-3, which is what keeps the net from
+/// wiggling where the data are sparse; a quarter to four times the
+/// weights fit the torus, box and cyl-plate within 20% of the same
+/// distances.
 pub const LAMBDA: [f64; 5] = [4e-1, 4e-2, 4e-3, 4e-3, 4e-3];
+/// Data are predicted between the input's vertices at this fraction of
+/// the net's spacing. At the spacing itself the surface was free to
+/// stray between data, and did where it bends most or changes its
+/// bending: beside the torus's irregular control vertices and along the
+/// seams where fillets meet flat faces and cylinders. Measured on the CAD
+/// shapes of docs/fitting.md, worst distance to the true surface at the
+/// spacing → at half of it, on a net remeshed at 0.015 of the diagonal:
+/// torus 1.1e-4 → 6.3e-5, filleted box 1.5e-4 → 1.2e-4, cyl-plate 2.0e-4
+/// → 1.7e-4, sphere 3.5e-5 → 1.3e-5, cylinder 6.3e-5 → 5.3e-5 of the
+/// diagonal; at a third, within 5% of half.
+const DATA_SPACING: f64 = 0.5;
+/// The spacing (relative to the diagonal) at which [`LAMBDA`] is the
+/// weight per datum: the default resolution when the weights were chosen.
+const LAMBDA_SPACING: f64 = 0.015;
 
 /// The factor of [`LAMBDA`] on a net of `control` points and spacing
 /// `relative` (to the diagonal) fitted to `data` points: per datum (the
 /// data term grows with the data, the fairness term with the net), and
-/// scaled by (DEFAULT_RESOLUTION / relative)². The fairness sums squared
+/// scaled by (LAMBDA_SPACING / relative)². The fairness sums squared
 /// second differences of the displacement, which for one smooth
 /// displacement shrink with the spacing h as h⁴ per control point, over a
 /// number of points that grows as 1/h²: without the factor a finer net is
@@ -94,7 +112,7 @@ pub const LAMBDA: [f64; 5] = [4e-1, 4e-2, 4e-3, 4e-3, 4e-3];
 /// to the true surface grows from 4e-5 to 2.3e-4 of the diagonal with the
 /// weight per datum alone, and to 9.4e-5 with the factor).
 fn fairness_weight(data: usize, control: usize, relative: f64) -> f64 {
-    data as f64 / control as f64 * (DEFAULT_RESOLUTION / relative).powi(2)
+    data as f64 / control as f64 * (LAMBDA_SPACING / relative).powi(2)
 }
 
 /// A fit: configure it, then [`Fitter::run`].
@@ -173,7 +191,7 @@ impl<'a> Fitter<'a> {
         let net = start::control_net(&input, size)?;
         let rows = rows::Rows::new(&net)?;
         let fairness = fairness::normal_matrix(&net);
-        let mut data = data::Data::new(&input, size);
+        let mut data = data::Data::new(&input, size * DATA_SPACING);
         let mut x: Vec<DVec3> = net.points().to_vec();
         let weight = fairness_weight(data.points.len(), x.len(), size / diagonal);
         let mut crease = data::Crease::new(&rows);
@@ -185,6 +203,7 @@ impl<'a> Fitter<'a> {
             x = solve::solve(
                 &refs,
                 &equations.targets,
+                &data.weights,
                 &fairness,
                 lambda * weight,
                 net.points(),

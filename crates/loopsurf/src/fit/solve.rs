@@ -1,16 +1,17 @@
-//! One least-squares solve: data rows A with targets b, the fairness
-//! matrix FᵀF weighted by λ (on the displacement from a reference net), and a proximal weight μ towards the current
-//! control points (it keeps the system definite where neither data nor
-//! fairness reaches, a corner without data, and is too small to bias the
-//! fit: 1e-13 of the data weight).
+//! One least-squares solve: data rows A with targets b and weights W, the
+//! fairness matrix FᵀF weighted by λ (on the displacement from a reference
+//! net), and a proximal weight μ towards the current control points (it
+//! keeps the system definite where neither data nor fairness reaches, a
+//! corner without data, and is too small to bias the fit: 1e-13 of the
+//! data weight).
 //!
-//! The normal equations (AᵀA + λFᵀF + μI) x = Aᵀb + λFᵀF x_ref + μx₀ are symmetric
-//! positive definite and sparse (a row couples the two-ring of one control
-//! triangle), so faer's sparse Cholesky factors them once for the three
-//! coordinates; its fill-reducing ordering keeps the cost near linear in
-//! the net for surface meshes. The rows come sorted by control vertex, so
-//! A is laid out row by row as it stands and every sum is a merge of
-//! sorted columns: nothing is sorted here.
+//! The normal equations (AᵀWA + λFᵀF + μI) x = AᵀWb + λFᵀF x_ref + μx₀ are
+//! symmetric positive definite and sparse (a row couples the two-ring of
+//! one control triangle), so faer's sparse Cholesky factors them once for
+//! the three coordinates; its fill-reducing ordering keeps the cost near
+//! linear in the net for surface meshes. The rows come sorted by control
+//! vertex, so A is laid out row by row as it stands and every sum is a
+//! merge of sorted columns: nothing is sorted here.
 
 use super::rows::Row;
 use crate::error::{Error, Result};
@@ -23,10 +24,12 @@ pub const PROXIMAL: f64 = 1e-13;
 
 /// Solves for the control points; `current` gives their number and the
 /// proximal anchor; the fairness term measures x − `reference`. Each row
-/// lists its control vertices in increasing order, each once.
+/// lists its control vertices in increasing order, each once, and counts
+/// `weights` times its own.
 pub fn solve(
     rows: &[&Row],
     targets: &[DVec3],
+    weights: &[f64],
     fairness: &SparseColMat<usize, f64>,
     lambda: f64,
     reference: &[DVec3],
@@ -37,10 +40,11 @@ pub fn solve(
     let mut col_idx = Vec::new();
     let mut val = Vec::new();
     row_ptr.push(0);
-    for row in rows {
+    for (row, &weight) in rows.iter().zip(weights) {
+        let scale = weight.sqrt();
         for &(j, w) in row.iter() {
             col_idx.push(j as usize);
-            val.push(w);
+            val.push(scale * w);
         }
         row_ptr.push(col_idx.len());
     }
@@ -76,10 +80,10 @@ pub fn solve(
         .sp_cholesky(faer::Side::Lower)
         .map_err(|e| failed("the normal equations are not definite", e))?;
     let mut rhs = faer::Mat::<f64>::from_fn(n, 3, |i, k| PROXIMAL * current[i][k]);
-    for (row, t) in rows.iter().zip(targets) {
+    for ((row, t), &weight) in rows.iter().zip(targets).zip(weights) {
         for &(j, w) in row.iter() {
             for k in 0..3 {
-                rhs[(j as usize, k)] += w * t[k];
+                rhs[(j as usize, k)] += weight * w * t[k];
             }
         }
     }
