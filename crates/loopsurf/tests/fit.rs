@@ -122,9 +122,9 @@ fn cylinder_rims_on_the_true_edges() {
 /// The cone's apex, a fan of slivers that no dihedral angle marks, is
 /// found and kept as a corner: the fitted surface reaches the true apex,
 /// and strays from the true cone less than when the apex is rounded off
-/// (5.5e-2 of the diagonal): on average 5× closer than the facets, whose
-/// slivers lie on the cone's rulings; at the worst, beside the apex, only
-/// 1.7× (the goal's 5× is missed: docs/fitting.md says why).
+/// (5.5e-2 of the diagonal): 5× closer than the facets at the worst and
+/// on average, though the facets' slivers lie on the cone's rulings (the
+/// goal's 10× on average is missed: docs/fitting.md says why).
 #[test]
 fn cone_apex_is_kept() {
     let shape = cad::cone(CHORD, ANGLE);
@@ -147,15 +147,19 @@ fn cone_apex_is_kept() {
     let d = cad::surrogate_distance(&shape, &surface, LATTICE).unwrap();
     let ex = shape.tessellation();
     let facets = cad::facet_distance(&shape, &ex.points, &ex.tris, LATTICE);
-    assert!(d.mean <= facets.mean / 5.0, "{d:?} against {facets:?}");
-    // Pinned as measured: 1.87e-4 / 7.23e-6 (3.8e-3 / 7.2e-5 while the
+    assert!(
+        d.max <= facets.max / 5.0 && d.mean <= facets.mean / 5.0,
+        "{d:?} against {facets:?}"
+    );
+    // Pinned as measured: 5.0e-5 / 7.0e-6 (3.8e-3 / 7.2e-5 while the
     // start net closed the apex with three triangles, 1.5e-3 / 6.6e-5
     // while the curves predicted along the rulings left the apex tilted,
     // 9.4e-4 / 7.3e-6 with six triangles around the apex, 6.0e-4 / 7.8e-6
-    // with sixteen on a net remeshed at 0.015 of the diagonal: the cusp
-    // that Loop's surface makes at the tip is as wide as the apex's ring,
-    // which the subdivided net halves).
-    assert!(d.max <= 2.0e-4 && d.mean <= 7.6e-6, "{d:?}");
+    // with sixteen on a net remeshed at 0.015 of the diagonal, 1.9e-4 /
+    // 7.2e-6 on the subdivided net with the fan opened by edge splits,
+    // which left vertices of valence 4 and 13 beside the tip; the polar
+    // grid around the apex took the worst away from the tip).
+    assert!(d.max <= 5.2e-5 && d.mean <= 7.3e-6, "{d:?}");
 }
 
 /// On the torus the fit meets the goals: 5× closer than the facets at

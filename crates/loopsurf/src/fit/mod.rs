@@ -14,7 +14,8 @@
 //!    corners. [`start`]: the control net is the input's approximating
 //!    surface remeshed by [`crate::Remesher`] at twice the chosen size,
 //!    its crease chains and corners tagged, so the new creases lie on the
-//!    input's feature lines, and subdivided once.
+//!    input's feature lines, a polar grid around each apex ([`polar`]),
+//!    and subdivided once.
 //! 2. [`data`]: the data are the input's vertices and, where the input's
 //!    edges and triangles are longer than half the net's spacing, points
 //!    predicted between them from the tangent planes at the vertices
@@ -43,6 +44,7 @@ mod apex;
 mod data;
 mod fairness;
 mod kink;
+mod polar;
 mod report;
 mod rows;
 mod samples;
