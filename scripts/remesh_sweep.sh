@@ -18,13 +18,8 @@ out=$(mktemp --suffix=.off)
 trap 'rm -f "$out"' EXIT
 echo "| mesh | control faces | triangles | time | min | mean-min | below 20° (forced) | chord error | crossing pairs | warnings |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
-for f in "$data"/*.off; do
+while read -r f n; do
     name=$(basename "$f")
-    # The triangle count: the second number of the OFF header.
-    n=$(grep -v '^#' "$f" | tr -s ' \t\r\n' '\n' | grep -v '^$' | sed -n '3p')
-    if ! [[ "$n" =~ ^[0-9]+$ ]] || [ "$n" -gt "$max" ]; then
-        continue
-    fi
     log=$(RAYON_NUM_THREADS=1 timeout 120 target/release/loopsurf mesh "$f" --repair \
         --hard-angle 40 --adapt curvature -o "$out" 2>&1)
     rc=$?
@@ -45,4 +40,4 @@ for f in "$data"/*.off; do
     [ -n "$in_net" ] && crossing="$crossing (net $in_net)"
     what=$(echo "$log" | grep -oP 'warning: \K(the net folds|triangles below 10° lie where the surface folds|chord tolerance)' | sort -u | tr '\n' ';')
     echo "| $name | $n | $tri | ${secs} s | ${min}° | ${mean}° | ${share}% ($below) | $dev | ${crossing/none/0} | ${what%;} |"
-done
+done < <(bash scripts/cgal_meshes.sh "$data" "$max")

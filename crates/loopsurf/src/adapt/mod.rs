@@ -377,3 +377,57 @@ impl AdaptiveMesh {
             .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))
     }
 }
+
+/// One level of adaptive Loop subdivision of `net` with the vertices for
+/// which `alive` holds subdivided and the others kept (dead), the
+/// transition closed and realigned as [`Adapter`]'s levels are.
+pub(crate) fn subdivide_where(
+    net: &ControlNet,
+    alive: impl Fn(usize) -> bool,
+) -> Result<ControlNet> {
+    let level = Level {
+        net: net.clone(),
+        charts: (0..net.triangles().len() as u32)
+            .map(|tri| FaceChart { tri, q: CORNERS })
+            .collect(),
+        dead: vec![false; net.points().len()],
+    };
+    let dead: Vec<bool> = (0..net.points().len()).map(|v| !alive(v)).collect();
+    let mut parts = split::subdivide(&level, &dead);
+    realign::realign(&mut parts);
+    Ok(parts.into_level()?.net)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Only the triangles with a living corner split: into four with at
+    /// most one dead corner, three with two (the live corner's triangle and
+    /// the dead edge's quad cut in two), and none is touched with three.
+    /// The surface stays one closed surface of the same genus.
+    #[test]
+    fn subdivide_where_splits_around_the_living_only() {
+        let ex = crate::examples::by_name("torus").unwrap();
+        let net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+        let alive = |v: usize| v == 0 || net.topology().ring(0).contains(&(v as u32));
+        let refined = subdivide_where(&net, alive).unwrap();
+        let expected: usize = net
+            .triangles()
+            .iter()
+            .map(
+                |t| match t.iter().filter(|&&v| !alive(v as usize)).count() {
+                    0 | 1 => 4,
+                    2 => 3,
+                    _ => 1,
+                },
+            )
+            .sum();
+        assert_eq!(refined.triangles().len(), expected);
+        assert!(expected > net.triangles().len());
+        assert_eq!(
+            refined.topology().euler_characteristic(),
+            net.topology().euler_characteristic()
+        );
+    }
+}
