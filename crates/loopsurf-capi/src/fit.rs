@@ -52,10 +52,8 @@ pub unsafe extern "C" fn ls_fit_options_default(options: *mut ls_fit_options) ->
 /// `options` may be NULL for the defaults.
 ///
 /// On success `*out` is the new net (release it with `ls_net_free`; build
-/// its surface with `ls_surface_build`). Where the fit misses an input
-/// vertex, the new net is refined around it and fitted again, up to three
-/// times; a tolerance the fit still cannot meet is
-/// LS_ERR_INVALID_ARGUMENT, never a worse net.
+/// its surface with `ls_surface_build`). A tolerance the fit cannot meet
+/// is LS_ERR_INVALID_ARGUMENT, never a worse net.
 #[no_mangle]
 pub unsafe extern "C" fn ls_net_fit(
     net: *const ls_net,

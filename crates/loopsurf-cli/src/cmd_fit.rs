@@ -54,19 +54,8 @@ pub fn report_lines(fit: &Fit) -> Vec<String> {
     let r = &fit.report;
     vec![
         format!(
-            "fitted net: {} control points, {} triangles, smallest angle {:.1}°; {} rounds in {:.2} s{}",
-            r.control_vertices,
-            r.control_triangles,
-            r.min_angle,
-            r.rounds,
-            r.seconds,
-            match r.refinements {
-                0 => String::new(),
-                n => format!(
-                    " (refined {n} time{} around the input vertices it missed)",
-                    if n == 1 { "" } else { "s" }
-                ),
-            }
+            "fitted net: {} control points, {} triangles, smallest angle {:.1}°; {} rounds in {:.2} s",
+            r.control_vertices, r.control_triangles, r.min_angle, r.rounds, r.seconds
         ),
         format!(
             "kept as corners: {} apexes, {} crease kinks",

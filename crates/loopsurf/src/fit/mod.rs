@@ -34,11 +34,8 @@
 //! 5. [`solve`]: the normal equations by faer's sparse Cholesky, three
 //!    right-hand sides.
 //! 6. [`report`]: the fitted surface measured by certified closest points.
-//! 7. [`refine_misses`]: where an input vertex is farther than the
-//!    tolerance, the net refined around it and fitted again, a few times
-//!    at most.
 //!
-//! A fit that still misses its tolerance at an input vertex is an error
+//! A fit that misses its tolerance at an input vertex is an error
 //! ([`crate::Error::FitTolerance`], naming the vertex and the distance):
 //! the caller never gets a worse surface without knowing it. The report
 //! of a fit that met it is in [`Fit::report`].
@@ -48,7 +45,6 @@ mod data;
 mod fairness;
 mod kink;
 mod polar;
-mod refine_misses;
 mod report;
 mod rows;
 mod samples;
@@ -120,39 +116,6 @@ const LAMBDA_SPACING: f64 = 0.015;
 /// weight per datum alone, and to 9.4e-5 with the factor).
 fn fairness_weight(data: usize, control: usize, relative: f64) -> f64 {
     data as f64 / control as f64 * (LAMBDA_SPACING / relative).powi(2)
-}
-
-/// The control points of `net` fitted to the data of `input` (predicted
-/// at `data_spacing`, model units), the net's spacing being `relative` to
-/// the diagonal: [`LAMBDA`]'s rounds of parameter correction and solve.
-fn fit_points(
-    input: &ControlNet,
-    net: &ControlNet,
-    data_spacing: f64,
-    relative: f64,
-) -> Result<(ControlNet, data::Data)> {
-    let rows = rows::Rows::new(net)?;
-    let fairness = fairness::normal_matrix(net);
-    let mut data = data::Data::new(input, data_spacing);
-    let mut x: Vec<DVec3> = net.points().to_vec();
-    let weight = fairness_weight(data.points.len(), x.len(), relative);
-    let mut crease = data::Crease::new(&rows);
-    for &lambda in &LAMBDA {
-        let surface = Surface::new(&net.with_points(x.clone()))?;
-        crease.at(&x);
-        let equations = data.equations(&surface, &rows, &crease, &x)?;
-        let refs: Vec<&rows::Row> = equations.vertices.iter().map(|&r| data.row(r)).collect();
-        x = solve::solve(
-            &refs,
-            &equations.targets,
-            &data.weights,
-            &fairness,
-            lambda * weight,
-            net.points(),
-            &x,
-        )?;
-    }
-    Ok((net.with_points(x), data))
 }
 
 /// A fit: configure it, then [`Fitter::run`].
@@ -228,42 +191,38 @@ impl<'a> Fitter<'a> {
                 self.tolerance
             )));
         }
-        let mut net = start::control_net(&input, size)?;
-        let start_triangles = net.triangles().len();
-        let data_spacing = size * DATA_SPACING;
-        let mut refinements = 0;
-        let (net, data, surface, vertices) = loop {
-            let (fitted, data) = fit_points(&input, &net, data_spacing, size / diagonal)?;
-            let surface = Surface::new(&fitted)?;
-            let snaps = report::closest_points(&surface, &data.points[..data.vertices.len()])?;
-            let vertices = report::Distances::of(&snaps, diagonal);
-            if vertices.max <= self.tolerance {
-                break (fitted, data, surface, vertices);
-            }
-            let refined = match refinements < refine_misses::MAX_REFINEMENTS {
-                true => Some(refine_misses::refine_around_misses(
-                    &fitted,
-                    &snaps,
-                    self.tolerance * diagonal,
-                )?),
-                false => None,
-            };
-            match refined {
-                Some(refined)
-                    if refined.triangles().len() <= refine_misses::MAX_GROWTH * start_triangles =>
-                {
-                    net = refined
-                }
-                _ => {
-                    return Err(Error::FitTolerance {
-                        vertex: data.vertices[vertices.worst],
-                        distance: vertices.max,
-                        tolerance: self.tolerance,
-                    })
-                }
-            }
-            refinements += 1;
-        };
+        let net = start::control_net(&input, size)?;
+        let rows = rows::Rows::new(&net)?;
+        let fairness = fairness::normal_matrix(&net);
+        let mut data = data::Data::new(&input, size * DATA_SPACING);
+        let mut x: Vec<DVec3> = net.points().to_vec();
+        let weight = fairness_weight(data.points.len(), x.len(), size / diagonal);
+        let mut crease = data::Crease::new(&rows);
+        for &lambda in &LAMBDA {
+            let surface = Surface::new(&net.with_points(x.clone()))?;
+            crease.at(&x);
+            let equations = data.equations(&surface, &rows, &crease, &x)?;
+            let refs: Vec<&rows::Row> = equations.vertices.iter().map(|&r| data.row(r)).collect();
+            x = solve::solve(
+                &refs,
+                &equations.targets,
+                &data.weights,
+                &fairness,
+                lambda * weight,
+                net.points(),
+                &x,
+            )?;
+        }
+        let net = net.with_points(x);
+        let surface = Surface::new(&net)?;
+        let vertices = report::distances(&surface, &data.points[..data.vertices.len()], diagonal)?;
+        if vertices.max > self.tolerance {
+            return Err(Error::FitTolerance {
+                vertex: data.vertices[vertices.worst],
+                distance: vertices.max,
+                tolerance: self.tolerance,
+            });
+        }
         let vertices = report::Distances {
             worst: data.vertices[vertices.worst],
             ..vertices
@@ -280,8 +239,7 @@ impl<'a> Fitter<'a> {
             kinks: kinks.len(),
             control_vertices: net.points().len(),
             control_triangles: net.triangles().len(),
-            rounds: LAMBDA.len() * (refinements + 1),
-            refinements,
+            rounds: LAMBDA.len(),
             seconds: clock.elapsed().as_secs_f64(),
         };
         Ok(Fit { net, report })

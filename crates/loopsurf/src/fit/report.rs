@@ -6,7 +6,7 @@
 use crate::error::Result;
 use crate::geometry::min_angle;
 use crate::net::ControlNet;
-use crate::snap::{self, Snap};
+use crate::snap;
 use crate::surface::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -47,47 +47,30 @@ pub struct FitReport {
     /// Control vertices and triangles of the fitted net.
     pub control_vertices: usize,
     pub control_triangles: usize,
-    /// Rounds of solve and parameter correction run, over every refinement.
+    /// Rounds of solve and parameter correction run.
     pub rounds: usize,
-    /// Times the net was refined where the fit missed the tolerance
-    /// ([`super::refine_misses`]).
-    pub refinements: usize,
     /// Wall time, seconds.
     pub seconds: f64,
 }
 
 /// Certified distances from `surface` to `points`, relative to `diagonal`.
 pub fn distances(surface: &Surface, points: &[DVec3], diagonal: f64) -> Result<Distances> {
-    let snaps = closest_points(surface, points)?;
-    Ok(Distances::of(&snaps, diagonal))
-}
-
-/// The certified closest point of `surface` to each of `points`.
-pub fn closest_points(surface: &Surface, points: &[DVec3]) -> Result<Vec<Snap>> {
     snap::build_index(surface);
-    points
+    let d: Vec<f64> = points
         .par_iter()
-        .map(|&p| snap::closest_point(surface, p))
-        .collect()
-}
-
-impl Distances {
-    /// The largest and mean distance of `snaps`, relative to `diagonal`,
-    /// and where the largest is met.
-    pub fn of(snaps: &[Snap], diagonal: f64) -> Distances {
-        let (worst, max) = snaps
-            .iter()
-            .map(|s| s.distance / diagonal)
-            .enumerate()
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .unwrap_or((0, 0.0));
-        Distances {
-            max,
-            mean: snaps.iter().map(|s| s.distance / diagonal).sum::<f64>()
-                / snaps.len().max(1) as f64,
-            worst,
-        }
-    }
+        .map(|&p| snap::closest_point(surface, p).map(|s| s.distance / diagonal))
+        .collect::<Result<_>>()?;
+    let (worst, max) = d
+        .iter()
+        .copied()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, 0.0));
+    Ok(Distances {
+        max,
+        mean: d.iter().sum::<f64>() / d.len().max(1) as f64,
+        worst,
+    })
 }
 
 /// The input edges' midpoints.
