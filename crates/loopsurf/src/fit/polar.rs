@@ -21,7 +21,8 @@
 //! lie on the straight lines from the apex to them (a cone's rulings, on a
 //! cone), at a half, a quarter, … of the way, strips of quads cut along
 //! one diagonal between them (valence 6 on every ring but the apex's, 5),
-//! and a fan at the apex. The same cone: 5.0e-5 at the worst, within 3.3e-5 near its tip.
+//! and a fan at the apex. The same cone: 5.0e-5 at the worst, within
+//! 3.3e-5 near its tip.
 
 use glam::DVec3;
 use std::collections::{HashMap, HashSet, VecDeque};
