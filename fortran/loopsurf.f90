@@ -162,6 +162,12 @@ module loopsurf
             real(c_double), value :: degrees
             integer(c_size_t), intent(out) :: ntagged
         end function
+        integer(c_int) function ls_net_seam_concave_corners(net, nseamed, nleft) &
+                bind(C, name="ls_net_seam_concave_corners")
+            import :: c_int, c_size_t, c_ptr
+            type(c_ptr), value :: net
+            integer(c_size_t), intent(out) :: nseamed, nleft
+        end function
         integer(c_int) function ls_net_counts(net, nverts, ntris, nhard) bind(C, name="ls_net_counts")
             import :: c_int, c_size_t, c_ptr
             type(c_ptr), value :: net

@@ -499,7 +499,7 @@ contains
         integer :: corners(2), faces(2), sides, sfaces(2), stris(2)
         integer, allocatable :: chain(:), tris(:), curves(:), next_chain(:)
         logical, allocatable :: forward(:)
-        integer(c_size_t) :: ntagged, nloop
+        integer(c_size_t) :: ntagged, nloop, nseamed, nleft
         integer(c_int32_t) :: loop_curves(4), loop_forward(4)
         type(c_ptr) :: cnet, csurf
 
@@ -510,6 +510,9 @@ contains
         call check(loopsurf_from_arrays(cube, cube_tris, cnet) == LS_OK, "cube")
         call check(ls_net_tag_by_angle(cnet, 30d0, ntagged) == LS_OK, "tag cube")
         call check(ntagged == 12, "cube edges hard")
+        ! A cube's corners are convex: nothing to seam.
+        call check(ls_net_seam_concave_corners(cnet, nseamed, nleft) == LS_OK, "seam cube")
+        call check(nseamed == 0 .and. nleft == 0, "cube has no concave corner")
         call check(ls_surface_build(cnet, csurf) == LS_OK, "cube surface")
         call check(loopsurf_model_counts(csurf, nfaces, ncurves, ncorners) == LS_OK, "model counts")
         call check(nfaces == 6 .and. ncurves == 12 .and. ncorners == 8, "6 faces, 12 curves, 8 corners")

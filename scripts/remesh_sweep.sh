@@ -7,7 +7,7 @@
 # summary calls forced by features), the chord error, the pairs of
 # triangles that cross (and of the control net's, where the mesh's do),
 # and the warnings (folds of the net or of the surface, the tolerance
-# missed).
+# missed). MESH_ARGS adds options to every run (e.g. --concave-seams).
 # Usage: bash scripts/remesh_sweep.sh [DATA_DIR]  (default: the test cache)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -21,7 +21,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|"
 while read -r f n; do
     name=$(basename "$f")
     log=$(RAYON_NUM_THREADS=1 timeout 120 target/release/loopsurf mesh "$f" --repair \
-        --hard-angle 40 --adapt curvature -o "$out" 2>&1)
+        --hard-angle 40 --adapt curvature ${MESH_ARGS:-} -o "$out" 2>&1)
     rc=$?
     if [ $rc -ne 0 ]; then
         why=$([ $rc -eq 124 ] && echo "over 120 s" || echo "$log" | tail -1 | cut -c1-120)

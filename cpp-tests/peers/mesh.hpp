@@ -43,11 +43,12 @@ inline void fail(const char* what) {
 
 // Loads a mesh, tags edges steeper than `angle` degrees (none if < 0), builds
 // the surface and reads the net back (level-0 refinement is the net itself).
-inline Net load_net(const std::string& path, double angle) {
+inline Net load_net(const std::string& path, double angle, bool concave_seams = false) {
     Net n;
     ls_net* net = nullptr;
     if (ls_net_load(path.c_str(), &net) != LS_OK) fail(path.c_str());
     if (angle >= 0 && ls_net_tag_by_angle(net, angle, nullptr) != LS_OK) fail("tag");
+    if (concave_seams && ls_net_seam_concave_corners(net, nullptr, nullptr) != LS_OK) fail("seams");
     size_t nh = 0;
     int32_t* pairs = nullptr;
     if (ls_net_hard_edges(net, &nh, &pairs) != LS_OK) fail("hard edges");

@@ -233,6 +233,35 @@ pub unsafe extern "C" fn ls_net_tag_by_angle(
     })
 }
 
+/// Splits every corner's sector that spans more than 195° (the inner
+/// corner of an L-shaped face) where Loop's crease rules fold the surface
+/// past the corner's creases (a patch of the sector folds over itself) by
+/// tagging hard the edge of its fan that halves it best, when one makes
+/// no angle below 40° with the
+/// sector's sides or the hard edges at its far end and ends in a smooth
+/// vertex or another corner (so no vertex changes its rule). Call it
+/// after the other tags. Writes how many folded sectors were seamed and
+/// how many were left (no such edge), each unless NULL. The seams are among
+/// `ls_net_hard_edges` afterwards.
+#[no_mangle]
+pub unsafe extern "C" fn ls_net_seam_concave_corners(
+    net: *mut ls_net,
+    nseamed: *mut usize,
+    nleft: *mut usize,
+) -> c_int {
+    run("ls_net_seam_concave_corners", || {
+        let net = &mut input_mut(net, "net")?.0;
+        let sectors = loopsurf::folds::seam_folded_concave_corners(net)?;
+        let seamed = sectors.iter().filter(|s| s.seam.is_some()).count();
+        for (out, n) in [(nseamed, seamed), (nleft, sectors.len() - seamed)] {
+            if !out.is_null() {
+                *out = n;
+            }
+        }
+        Ok(())
+    })
+}
+
 /// Writes the numbers of vertices, triangles and hard edges (boundary
 /// edges included); each output may be NULL.
 #[no_mangle]

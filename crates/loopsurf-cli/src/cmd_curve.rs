@@ -33,6 +33,9 @@ pub struct Args {
     /// Tag the net's vertices listed in FILE (one 0-based index a line) as corners.
     #[arg(long, value_name = "FILE")]
     hard_vertices: Option<PathBuf>,
+    /// Split the net's concave corners by seams, as `loopsurf mesh --concave-seams`.
+    #[arg(long)]
+    concave_seams: bool,
     #[command(flatten)]
     surface: SurfaceOptions,
     /// Order of the curved elements (1 to 4).
@@ -75,6 +78,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         hard_angle: args.hard_angle,
         hard_edges: args.hard_edges.clone(),
         hard_vertices: args.hard_vertices.clone(),
+        concave_seams: args.concave_seams,
     };
     let net = input.load()?;
     let given = read_given(&args.linear)?;

@@ -437,8 +437,26 @@ fn warn_of_surface_folds(surface: &Surface, mesh: &SurfaceMesh) {
         return;
     }
     let shown: Vec<String> = folded.iter().take(8).map(|t| t.to_string()).collect();
+    // Folds beside a concave corner are what --concave-seams is for.
+    let corners: Vec<String> = loopsurf::concave::concave_sectors(surface.net())
+        .iter()
+        .filter(|s| s.seam.is_some())
+        .filter(|s| s.triangles.iter().any(|&t| folded.contains(&(t as usize))))
+        .map(|s| s.corner.to_string())
+        .collect();
+    let hint = match corners.len() {
+        0 => "look at the net's corners, creases and irregular vertices there".to_string(),
+        1 => format!(
+            "the fold beside the concave corner at vertex {} is what --concave-seams splits",
+            corners[0]
+        ),
+        _ => format!(
+            "the folds beside the concave corners at vertices {} are what --concave-seams splits",
+            corners.join(", ")
+        ),
+    };
     eprintln!(
-        "loopsurf: warning: triangles below 10° lie where the surface folds over itself, in {} control triangle{} ({}{}): no mesh of a fold is good; look at the net's corners, creases and irregular vertices there",
+        "loopsurf: warning: triangles below 10° lie where the surface folds over itself, in {} control triangle{} ({}{}): no mesh of a fold is good; {hint}",
         folded.len(),
         if folded.len() == 1 { "" } else { "s" },
         shown.join(", "),

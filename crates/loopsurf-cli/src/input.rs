@@ -46,6 +46,12 @@ pub struct Input {
     /// Tag the vertices listed in FILE (one 0-based index a line) as corners.
     #[arg(long, value_name = "FILE")]
     pub hard_vertices: Option<PathBuf>,
+    /// Split every corner's sector that spans more than 195° (the inner
+    /// corner of an L-shaped face) and whose surface folds there, past the
+    /// corner, by tagging an edge of its fan hard; says which edges, which
+    /// sectors it left, and how far the surface moved.
+    #[arg(long)]
+    pub concave_seams: bool,
 }
 
 impl Input {
@@ -130,6 +136,13 @@ impl Input {
                 net.tag_vertex(v).map_err(|e| e.in_file(path, Some(line)))?;
             }
         }
+        if self.concave_seams {
+            let before = net.clone();
+            let sectors = loopsurf::folds::seam_folded_concave_corners(&mut net)?;
+            for line in seam_report(&sectors, &before, &net)? {
+                eprintln!("loopsurf: {}: {line}", self.name());
+            }
+        }
         Ok(net)
     }
 }
@@ -149,6 +162,114 @@ fn warn_of_folds(net: &ControlNet, name: &str) {
         if folds.len() == 1 { "" } else { "s" },
         worst.degrees
     );
+}
+
+/// What `--concave-seams` did: a line for the seams, with how far the
+/// surface moved ([`seam_moves`]), and one for the folded sectors left as
+/// they were; or one saying that nothing folds.
+fn seam_report(
+    sectors: &[loopsurf::concave::ConcaveSector],
+    before: &ControlNet,
+    after: &ControlNet,
+) -> Result<Vec<String>, Error> {
+    let list = |items: Vec<String>| {
+        let shown = items.iter().take(8).cloned().collect::<Vec<_>>().join(", ");
+        if items.len() > 8 {
+            format!("{shown}, ...")
+        } else {
+            shown
+        }
+    };
+    let plural = |n: usize| if n == 1 { "" } else { "s" };
+    let seamed: Vec<String> = sectors
+        .iter()
+        .filter_map(|s| {
+            let ([a, b], [x, y]) = s.seam?;
+            Some(format!(
+                "{} by {a}–{b} ({:.1}° into {x:.1}° + {y:.1}°)",
+                s.corner, s.degrees
+            ))
+        })
+        .collect();
+    let left: Vec<String> = sectors
+        .iter()
+        .filter(|s| s.seam.is_none())
+        .map(|s| format!("{} ({:.1}°)", s.corner, s.degrees))
+        .collect();
+    let mut lines = Vec::new();
+    if sectors.is_empty() {
+        lines.push("nothing to seam: no concave corner's surface folds".to_string());
+    }
+    if !seamed.is_empty() {
+        let (away, back) = seam_moves(sectors, before, after)?;
+        lines.push(format!(
+            "seamed {} folded concave corner{}, at vertices {}; the seamed surface lies within {away:.1e} of the diagonal of the surface before, and the surface before within {back:.1e} of it (as far as the flaps the seams removed reached)",
+            seamed.len(),
+            plural(seamed.len()),
+            list(seamed.clone()),
+        ));
+    }
+    if !left.is_empty() {
+        lines.push(format!(
+            "left {} folded concave corner{} unseamed, no edge of the fan splitting the sector without an angle below {}° or a vertex changing its rule: vertices {}",
+            left.len(),
+            plural(left.len()),
+            loopsurf::concave::MIN_SEAM_DEGREES,
+            list(left)
+        ));
+    }
+    Ok(lines)
+}
+
+/// How far the surface moved where the seams changed it, as shares of the
+/// diagonal: the farthest of the seamed surface's points from the surface
+/// before (what the seams added or moved; 0 on flat sectors), and the
+/// farthest of the points before from the seamed surface (the flaps
+/// pulled back). Points at the 10 parameters of the lattice of sixths
+/// inside each control triangle with a vertex within two rings of a seam
+/// (the reach of Loop's masks); distances by certified closest points.
+fn seam_moves(
+    sectors: &[loopsurf::concave::ConcaveSector],
+    before: &ControlNet,
+    after: &ControlNet,
+) -> Result<(f64, f64), Error> {
+    let topo = after.topology();
+    let mut near = vec![false; topo.num_vertices()];
+    let mut frontier: Vec<u32> = sectors
+        .iter()
+        .filter_map(|s| s.seam)
+        .flat_map(|(e, _)| e)
+        .collect();
+    for _ in 0..2 {
+        let mut next = Vec::new();
+        for v in frontier {
+            for &n in topo.ring(v as usize) {
+                if !near[n as usize] {
+                    near[n as usize] = true;
+                    next.push(n);
+                }
+            }
+        }
+        frontier = next;
+    }
+    let triangles: Vec<usize> = (0..topo.num_triangles())
+        .filter(|&t| topo.triangles()[t].iter().any(|&v| near[v as usize]))
+        .collect();
+    let (old, new) = (Surface::new(before)?, Surface::new(after)?);
+    let farthest = |from: &Surface, to: &Surface| -> Result<f64, Error> {
+        let mut far: f64 = 0.0;
+        for &t in &triangles {
+            for i in 1..5 {
+                for j in 1..=5 - i {
+                    let (v, w) = (i as f64 / 6.0, j as f64 / 6.0);
+                    let p = from.point(t, v, w)?;
+                    far = far.max(loopsurf::snap::closest_point(to, p)?.distance);
+                }
+            }
+        }
+        Ok(far / before.bbox_diagonal())
+    };
+    Ok((farthest(&new, &old)?, farthest(&old, &new)?))
 }
 
 /// Normals turning by more than this across an edge are a fold.

@@ -1173,3 +1173,47 @@ fn refuse_curving_onto_another_model(msh: &Path) {
         "must be .msh or .vtu",
     );
 }
+
+/// `--concave-seams` on the inner corner of an L-shaped flat face (CGAL
+/// anchor's, in units of its bar's width; every vertex a corner), where
+/// Loop's crease rules fold the surface 0.19 of the bar's width (2.5% of
+/// the diagonal) into the notch: one seam, which adds nothing to the
+/// surface (it stays in its plane, within round-off of the surface
+/// before) and removes the flap.
+#[test]
+fn concave_seams_report_what_they_changed() {
+    let net = scratch("concave_l.off");
+    std::fs::write(
+        &net,
+        "OFF\n6 4 0\n-6 0 0\n-6 1 0\n0 0 0\n1 1 0\n0 -1.6 0\n1 -1.6 0\n\
+         3 0 2 1\n3 2 3 1\n3 2 4 3\n3 4 5 3\n",
+    )
+    .unwrap();
+    let corners = scratch("concave_l.corners");
+    std::fs::write(&corners, "0\n1\n2\n3\n4\n5\n").unwrap();
+    let (net, corners) = (net.to_str().unwrap(), corners.to_str().unwrap());
+    let out = loopsurf(&["info", net, "--hard-vertices", corners, "--concave-seams"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    let line = err
+        .lines()
+        .find(|l| {
+            l.contains(
+                "seamed 1 folded concave corner, at vertices 2 by 2–3 (270.0° into 135.0° + 135.0°)",
+            )
+        })
+        .unwrap_or_else(|| panic!("{err}"));
+    let figures: Vec<f64> = line
+        .split("within ")
+        .skip(1)
+        .map(|s| s.split_whitespace().next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(figures.len(), 2, "{line}");
+    assert!(figures[0] <= 1e-12, "{line}");
+    assert!((0.02..0.03).contains(&figures[1]), "{line}");
+    assert!(!err.contains("left"), "{err}");
+    // Without the flag, nothing is seamed or said.
+    let out = loopsurf(&["info", net, "--hard-vertices", corners]);
+    assert!(out.status.success());
+    assert!(!text(&out.stderr).contains("seam"), "{}", text(&out.stderr));
+}

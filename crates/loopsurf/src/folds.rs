@@ -3,8 +3,11 @@
 //! folds ([`folded_edges`]), and control triangles whose patch of the
 //! limit surface folds over itself ([`folded_patches`]). Neither
 //! is an error (the surface is well defined), but no mesh of a fold has
-//! good triangles that all face one way.
+//! good triangles that all face one way. Where a patch folds at a concave
+//! corner, [`seam_folded_concave_corners`] splits the corner's sector.
 
+use crate::concave::{concave_sectors, ConcaveSector};
+use crate::error::Result;
 use crate::features::dihedral_angle;
 use crate::net::ControlNet;
 use crate::surface::Surface;
@@ -65,8 +68,8 @@ const FOLD_COSINE: f64 = -0.5;
 /// 120°. Coarse nets fold next to corners, creases and irregular
 /// vertices of high valence: hole.off's faces beside its rim at 40°
 /// (the normal turns from −x to +x within 0.1 of the crease),
-/// anchor.off's flat fans around valence 34 and 22 (the normal flips
-/// ±y within 4e-7 of its plane), pig.off next to its folded needle;
+/// anchor.off's flat faces at the inner corners of their L shapes (the
+/// normal flips ±y within 4e-7 of its plane; see [`crate::concave`]), pig.off next to its folded needle;
 /// none on the Viking, fandisk or CAD cubes. Every patch is evaluated,
 /// 153 times: on large nets, ask [`is_folded`] where a mesh
 /// shows trouble.
@@ -152,4 +155,27 @@ mod tests {
             "{all:?}"
         );
     }
+}
+
+/// Seams the concave corners whose sectors fold: among
+/// [`concave_sectors`], those with a patch that folds over itself
+/// ([`is_folded`], on the surface of the net as it is) get their seam
+/// tagged hard. Returns those folded sectors, seamed or not (then their
+/// `seam` is `None`: no edge of the fan splits them well). Sectors that
+/// do not fold are left alone, since a seam there changes nothing but
+/// adds a feature line to every mesh. Call it after the other tags.
+pub fn seam_folded_concave_corners(net: &mut ControlNet) -> Result<Vec<ConcaveSector>> {
+    let sectors = concave_sectors(net);
+    if sectors.is_empty() {
+        return Ok(sectors);
+    }
+    let surface = Surface::new(net)?;
+    let folded: Vec<ConcaveSector> = sectors
+        .into_iter()
+        .filter(|s| s.triangles.iter().any(|&t| is_folded(&surface, t as usize)))
+        .collect();
+    for ([a, b], _) in folded.iter().filter_map(|s| s.seam) {
+        net.tag_edge(a, b)?;
+    }
+    Ok(folded)
 }

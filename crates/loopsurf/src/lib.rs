@@ -16,7 +16,9 @@
 //!    triangles) → [`features`] (hard edges and vertex kinds) → [`net`]
 //!    (positions, validation, the limit operator; reading a file parses,
 //!    repairs and validates here).
-//! 4. On the net: [`refine`] (uniform subdivision), [`interpolate`]
+//! 4. On the net: [`refine`] (uniform subdivision), [`concave`] (corners
+//!    whose sectors span more than 180°, and the seams that keep Loop's
+//!    crease rules from folding the surface there), [`interpolate`]
 //!    (control points whose limit passes through given points),
 //!    [`model`] (corners, curves and faces of the hard features) and
 //!    [`partition`] (the control triangles in K parts for K processes,
@@ -47,6 +49,7 @@
 
 pub mod adapt;
 pub mod cad;
+pub mod concave;
 pub mod curve;
 pub mod error;
 pub(crate) mod eval;

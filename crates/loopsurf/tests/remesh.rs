@@ -18,9 +18,13 @@ fn cgal(name: &str, angle: f64) -> Option<ControlNet> {
     Some(net)
 }
 
-/// The three cases: net, relative size, and CGAL 5.5's isotropic
-/// remeshing at that size (3 iterations, sharp edges constrained),
-/// measured on 2026-11-28: triangles and smallest angle.
+/// The cases: net, relative size, and CGAL 5.5's isotropic remeshing at
+/// that size (3 iterations, sharp edges constrained): triangles and
+/// smallest angle, measured on 2026-11-28 (anchor on 2026-12-04, by
+/// bench_peers). Anchor's concave corners whose surface folds are seamed
+/// (`folds::seam_folded_concave_corners`); unseamed, its flaps cross the
+/// mesh (3.3° and 30 crossing pairs at 1%). CGAL meshes the facets,
+/// which have no flap.
 fn cases() -> Vec<(&'static str, ControlNet, f64, usize, f64)> {
     let mut out = vec![("viking", example("viking", Some(30.0)), 0.01, 23_268, 26.1)];
     if let Some(net) = cgal("fandisk.off", 30.0) {
@@ -28,6 +32,10 @@ fn cases() -> Vec<(&'static str, ControlNet, f64, usize, f64)> {
     }
     if let Some(net) = cgal("pig.off", 40.0) {
         out.push(("pig", net, 0.005, 88_822, 4.3));
+    }
+    if let Some(mut net) = cgal("anchor.off", 30.0) {
+        loopsurf::folds::seam_folded_concave_corners(&mut net).unwrap();
+        out.push(("anchor, seamed", net, 0.01, 35_610, 10.6));
     }
     out
 }
@@ -698,8 +706,9 @@ fn gradation_bounds_how_fast_sizes_change() {
 }
 
 /// A CAD tessellation's fans: anchor.off has irregular vertices of valence
-/// 34, 22 and 20 beside its 90° creases, where its surface wrinkles and
-/// folds over itself with huge curvature and a tiny chord error. Sized by
+/// 34, 22 and 20 beside its 90° creases, at the inner corners of L-shaped
+/// flat faces, where its surface (unseamed, as here) folds over itself
+/// with huge curvature and a tiny chord error. Sized by
 /// the curvature at each vertex alone, sizes ran away towards them
 /// (42 434 triangles, 19% below 20°); the chord tolerance is met with far
 /// fewer, and mostly good, triangles (0.23% below 20°, mean-min 49.9°,
@@ -732,7 +741,8 @@ fn high_valence_fans_do_not_run_away() {
     check_invariants("anchor", &surface, &mesh);
     // In those flat fans the surface itself folds: its normal flips
     // between +y and −y within one control triangle (500, beside the
-    // valence-22 vertex) while it stays within 4e-7 of the plane. A
+    // valence-22 vertex, a concave corner) while it stays within 4e-7 of
+    // the plane. A
     // triangle there faces one way or the other: every one that faces
     // against the nearest point's normal lies on a patch that folds
     // (`folds::folded_patches`, checked against the refined net in
