@@ -236,6 +236,31 @@ fn a_folding_surface_in_parts_joins_into_one_manifold() {
     }
 }
 
+/// bull.off (read with every repair, 40°, its folded concave corners
+/// seamed, adapted) in 4 parts: beside its folds a part cut a corner
+/// between two pinned vertices that triangles no part remeshes already
+/// joined, and the band pass refused the joined mesh ("not a manifold":
+/// that edge four times). One closed manifold mesh now, every vertex the
+/// surface at its parameters.
+#[test]
+fn kept_triangles_hold_their_edges_against_every_part() {
+    let Some(path) = common::cgal_mesh("bull.off") else {
+        return;
+    };
+    let mut net =
+        ControlNet::read_with(path, &loopsurf::repair::ReadOptions::repair_all()).unwrap();
+    net.tag_by_angle(40.0).unwrap();
+    let folded = loopsurf::folds::seam_folded_concave_corners(&mut net).unwrap();
+    assert!(folded.iter().any(|s| s.seam.is_some()), "{folded:?}");
+    let surface = Surface::new(&net).unwrap();
+    let what = "bull, seamed, in 4 parts";
+    let mesh = remesh(&surface, 4, 2);
+    assert_eq!(boundary_loops(&mesh, what), 0, "{what}: open");
+    for (p, at) in mesh.points.iter().zip(&mesh.params) {
+        assert_eq!(surface.point(at.tri as usize, at.v, at.w).unwrap(), *p);
+    }
+}
+
 #[test]
 fn zero_parts_are_refused() {
     let net = common::example("viking", Some(30.0));

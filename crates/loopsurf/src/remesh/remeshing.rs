@@ -24,7 +24,8 @@ pub(crate) struct Remeshing<'a> {
     /// neither may move or remove), else [`NONE`].
     pub pinned: Vec<u32>,
     /// Per vertex: whether it is pinned and a part before this piece's in
-    /// the order of parts holds it too ([`Remeshing::may_join`]).
+    /// the order of parts, or the triangles no part remeshes, hold it too
+    /// ([`Remeshing::may_join`]).
     pub yields: Vec<bool>,
     /// Per vertex: a bound on its size before grading (infinite but where
     /// the size around a pinned vertex is known from before: grading is

@@ -40,12 +40,18 @@ pub(super) struct PartWork {
 }
 
 /// A start's pinned vertices: per vertex its pinned id (itself) or
-/// [`NONE`], and the lowest part holding it (which alone may join two
+/// [`NONE`], the lowest part holding it (which alone may join two
 /// pinned vertices anew:
-/// [`Remeshing::may_join`](super::super::remeshing::Remeshing::may_join)).
+/// [`Remeshing::may_join`](super::super::remeshing::Remeshing::may_join)),
+/// and whether a triangle no part remeshes holds it. That kept piece comes
+/// before every part: it may already join two of its vertices, so no part
+/// may (bull.off with its concave corners seamed, in 4 parts: part 0 cut
+/// a corner between two vertices that kept triangles joined, and the
+/// joined mesh held that edge four times).
 pub(super) struct Pins {
     pub(super) id: Vec<u32>,
     pub(super) lowest: Vec<u32>,
+    pub(super) kept: Vec<bool>,
 }
 
 impl Pins {
@@ -57,11 +63,18 @@ impl Pins {
         n: usize,
         pinned: impl Fn(usize) -> bool,
     ) -> Pins {
+        let mut kept = vec![false; n];
+        for (tri, _) in triangles.iter().zip(owner).filter(|(_, &p)| p == NONE) {
+            for &v in tri {
+                kept[v as usize] = true;
+            }
+        }
         Pins {
             id: (0..n as u32)
                 .map(|v| if pinned(v as usize) { v } else { NONE })
                 .collect(),
             lowest: lowest_part(triangles, owner, n),
+            kept,
         }
     }
 }
@@ -232,7 +245,8 @@ impl PartWork {
         let mut work = start::start_from(placer, &piece)?;
         for (i, &g) in ids.iter().enumerate() {
             work.pinned[i] = pins.id[g as usize];
-            work.yields[i] = work.is_pinned(i as u32) && pins.lowest[g as usize] < p;
+            let g = g as usize;
+            work.yields[i] = work.is_pinned(i as u32) && (pins.kept[g] || pins.lowest[g] < p);
         }
         Ok((work, ids))
     }
