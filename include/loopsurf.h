@@ -239,12 +239,11 @@ int ls_net_tag_by_angle(ls_net *net, double degrees, size_t *ntagged);
 // corner of an L-shaped face) where Loop's crease rules fold the surface
 // past the corner's creases (a patch of the sector folds over itself) by
 // tagging hard the edge of its fan that halves it best, when one makes
-// no angle below 40° with the
-// sector's sides or the hard edges at its far end and ends in a smooth
-// vertex or another corner (so no vertex changes its rule). Call it
-// after the other tags. Writes how many folded sectors were seamed and
-// how many were left (no such edge), each unless NULL. The seams are among
-// `ls_net_hard_edges` afterwards.
+// no angle below 40° with the sector's sides or the hard edges at its
+// far end and ends in a smooth vertex or another corner (so no vertex
+// changes its rule). Call it after the other tags. Writes how many folded
+// sectors were seamed and how many were left (no such edge), each unless
+// NULL. The seams are among `ls_net_hard_edges` afterwards.
 int ls_net_seam_concave_corners(ls_net *net, size_t *nseamed, size_t *nleft);
 
 // Writes the numbers of vertices, triangles and hard edges (boundary

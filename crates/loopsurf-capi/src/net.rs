@@ -237,12 +237,11 @@ pub unsafe extern "C" fn ls_net_tag_by_angle(
 /// corner of an L-shaped face) where Loop's crease rules fold the surface
 /// past the corner's creases (a patch of the sector folds over itself) by
 /// tagging hard the edge of its fan that halves it best, when one makes
-/// no angle below 40° with the
-/// sector's sides or the hard edges at its far end and ends in a smooth
-/// vertex or another corner (so no vertex changes its rule). Call it
-/// after the other tags. Writes how many folded sectors were seamed and
-/// how many were left (no such edge), each unless NULL. The seams are among
-/// `ls_net_hard_edges` afterwards.
+/// no angle below 40° with the sector's sides or the hard edges at its
+/// far end and ends in a smooth vertex or another corner (so no vertex
+/// changes its rule). Call it after the other tags. Writes how many folded
+/// sectors were seamed and how many were left (no such edge), each unless
+/// NULL. The seams are among `ls_net_hard_edges` afterwards.
 #[no_mangle]
 pub unsafe extern "C" fn ls_net_seam_concave_corners(
     net: *mut ls_net,

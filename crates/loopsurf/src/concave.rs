@@ -28,6 +28,7 @@
 use crate::features::VertexKind;
 use crate::geometry;
 use crate::net::ControlNet;
+use crate::topology::corner_of;
 use std::collections::HashMap;
 
 /// A sector spanning more than this is concave, degrees. The L of obtuse
@@ -72,8 +73,7 @@ pub fn concave_sectors(net: &ControlNet) -> Vec<ConcaveSector> {
             continue;
         }
         for sector in sectors(net, v as u32) {
-            let angles: Vec<f64> = sector.iter().map(|&(_, angle)| angle).collect();
-            let total: f64 = angles.iter().sum();
+            let total: f64 = sector.iter().map(|&(_, angle)| angle).sum();
             if total <= CONCAVE_DEGREES.to_radians() {
                 continue;
             }
@@ -81,7 +81,7 @@ pub fn concave_sectors(net: &ControlNet) -> Vec<ConcaveSector> {
                 corner: v as u32,
                 triangles: sector.iter().map(|&(fan, _)| fan.triangle).collect(),
                 degrees: total.to_degrees(),
-                seam: best_seam(net, &kinds, v as u32, &sector),
+                seam: best_seam(net, &kinds, v as u32, &sector, total),
             });
         }
     }
@@ -106,7 +106,7 @@ fn sectors(net: &ControlNet, v: u32) -> Vec<Vec<(FanTriangle, f64)>> {
         .iter()
         .map(|&t| {
             let c = topo.triangles()[t as usize];
-            let k = c.iter().position(|&x| x == v).expect("v is in its fan");
+            let k = corner_of(c, v) as usize;
             FanTriangle {
                 triangle: t,
                 next: c[(k + 1) % 3],
@@ -122,11 +122,12 @@ fn sectors(net: &ControlNet, v: u32) -> Vec<Vec<(FanTriangle, f64)>> {
             points[f.prev as usize] - corner,
         )
     };
+    let is_hard = |u: u32| net.features().is_hard_between(topo, v, u);
     let mut out = Vec::new();
-    for start in fan.iter().filter(|f| is_hard(net, v, f.next)) {
+    for start in fan.iter().filter(|f| is_hard(f.next)) {
         let mut sector = vec![(*start, angle(start))];
         let mut here = *start;
-        while !is_hard(net, v, here.prev) {
+        while !is_hard(here.prev) {
             let Some(&i) = by_next.get(&here.prev) else {
                 break;
             };
@@ -138,14 +139,8 @@ fn sectors(net: &ControlNet, v: u32) -> Vec<Vec<(FanTriangle, f64)>> {
     out
 }
 
-fn is_hard(net: &ControlNet, a: u32, b: u32) -> bool {
-    net.topology()
-        .find_edge(a, b)
-        .is_some_and(|e| net.features().is_hard_edge(e))
-}
-
-/// The inner edge of the sector that splits it most evenly into two
-/// halves under 180°, neither half nor any angle the edge makes with a
+/// The inner edge of the sector (spanning `total` radians) that splits it
+/// most evenly into two halves under 180°, neither half nor any angle the edge makes with a
 /// hard edge at its far end below [`MIN_SEAM_DEGREES`], ending in a smooth
 /// vertex or a corner (whose rules a seam leaves as they were).
 fn best_seam(
@@ -153,8 +148,8 @@ fn best_seam(
     kinds: &[VertexKind],
     v: u32,
     sector: &[(FanTriangle, f64)],
+    total: f64,
 ) -> Option<([u32; 2], [f64; 2])> {
-    let total: f64 = sector.iter().map(|&(_, a)| a).sum();
     let least = MIN_SEAM_DEGREES.to_radians();
     let half = std::f64::consts::PI;
     let mut before = 0.0;

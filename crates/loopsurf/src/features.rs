@@ -154,15 +154,18 @@ impl Features {
             .collect()
     }
 
+    /// Whether a and b are joined by a hard edge (false where no edge
+    /// joins them).
+    pub fn is_hard_between(&self, topo: &Topology, a: u32, b: u32) -> bool {
+        topo.find_edge(a, b).is_some_and(|e| self.hard_edge[e])
+    }
+
     /// The neighbours of v across hard edges, in ring order.
     pub fn hard_neighbours(&self, topo: &Topology, v: usize) -> Vec<u32> {
         topo.ring(v)
             .iter()
             .copied()
-            .filter(|&n| {
-                topo.find_edge(v as u32, n)
-                    .is_some_and(|e| self.hard_edge[e])
-            })
+            .filter(|&n| self.is_hard_between(topo, v as u32, n))
             .collect()
     }
 

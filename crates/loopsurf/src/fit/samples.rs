@@ -122,10 +122,7 @@ fn hermite(a: DVec3, da: DVec3, b: DVec3, db: DVec3, s: f64) -> DVec3 {
 fn derivative(input: &ControlNet, kinds: &[VertexKind], a: u32, b: u32) -> DVec3 {
     let topo = input.topology();
     let d = input.points()[b as usize] - input.points()[a as usize];
-    let hard = topo
-        .find_edge(a, b)
-        .is_some_and(|e| input.features().is_hard_edge(e));
-    if hard {
+    if input.features().is_hard_between(topo, a, b) {
         return d.length() * crease_tangent(input, kinds, a, b);
     }
     in_plane(d, Some(plane_normal(topo, input, kinds, a, b)))
@@ -422,10 +419,7 @@ fn sector(topo: &Topology, input: &ControlNet, a: u32, b: u32) -> Vec<u32> {
             (false, false) => i.checked_sub(1),
         }
     };
-    let is_hard = |i: usize| {
-        topo.find_edge(a, ring[i])
-            .is_some_and(|e| input.features().is_hard_edge(e))
-    };
+    let is_hard = |i: usize| input.features().is_hard_between(topo, a, ring[i]);
     let mut out = vec![b];
     for forward in [true, false] {
         let mut i = j;
