@@ -20,7 +20,8 @@
  * writes binary .msh, or .vtu pieces with base64 arrays. --verbose
  * prints, per stage, the slowest rank's time in its tasks, in the
  * exchange and in advancing (every rank advances alike: joins, cuts and
- * the start mesh are not shared out). Bad
+ * the start mesh are not shared out), and each rank's peak resident
+ * memory so far (getrusage), so a run that is to grow can be sized. Bad
  * arguments or input: one line on rank 0's stderr, exit status 2. */
 #include <loopsurf.h>
 #include <mpi.h>
@@ -31,6 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 typedef struct {
     const char* input;
@@ -193,6 +195,22 @@ static uint8_t* gather(const uint8_t* mine, size_t n, size_t* counts) {
     return bytes;
 }
 
+/* Every rank's peak resident memory so far, in MB, printed by rank 0 as
+ * one line "  peak RSS after WHEN: R0, R1, ... MB" (on Linux ru_maxrss is
+ * in kB). */
+static void print_peak_rss(const char* when) {
+    struct rusage usage;
+    long mine = getrusage(RUSAGE_SELF, &usage) == 0 ? usage.ru_maxrss / 1024 : -1;
+    long* all = rank_ == 0 ? malloc(sizeof *all * (size_t)ranks_) : NULL;
+    MPI_Gather(&mine, 1, MPI_LONG, all, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+    if (rank_ == 0 && all != NULL) {
+        printf("  peak RSS after %s:", when);
+        for (int q = 0; q < ranks_; q++) printf("%s %ld", q ? "," : "", all[q]);
+        printf(" MB\n");
+    }
+    free(all);
+}
+
 /* Rank q's piece: OUT_q.vtu for OUT.pvtu, OUT_q.msh for OUT.msh, and
  * its name beside OUT. */
 static void piece_name(const char* out, int q, char* path, size_t size, const char** base) {
@@ -263,6 +281,7 @@ int main(int argc, char** argv) {
     if (st == LS_OK) st = ls_surface_build(net, &surface);
     if (st == LS_OK) st = ls_remesh_job_new(surface, &a.remesh, rank_, ranks_, &job);
     agree(st == LS_OK ? NULL : ls_last_error());
+    if (a.verbose) print_peak_rss("reading the net and building its surface");
 
     size_t* counts = malloc(sizeof *counts * (size_t)ranks_);
     for (;;) {
@@ -287,6 +306,7 @@ int main(int argc, char** argv) {
             if (rank_ == 0)
                 printf("%s: tasks %.3f s, exchange %.3f s, advance %.3f s\n", stage, slowest[0], slowest[1],
                        slowest[2]);
+            print_peak_rss(stage);
         }
     }
     free(counts);
@@ -312,6 +332,7 @@ int main(int argc, char** argv) {
         printf("%llu triangles in %zu parts on %d ranks, in %.3f s; wrote %d pieces (%s, ...)%s%s\n", sum[0],
                a.remesh.parts, ranks_, seconds, ranks_, first, a.msh ? "" : " and ", a.msh ? "" : a.output);
     }
+    if (a.verbose) print_peak_rss("writing");
 
     ls_free_array(ids);
     ls_trimesh_free(piece);

@@ -35,7 +35,8 @@ pub struct ls_remesh_options {
     /// The most triangles the mesh may have (≥ 1); a density asking for
     /// more fails with LS_ERR_OVER_BUDGET, and `ls_last_error` says how
     /// many it asked for, before the memory is spent. Default 20 million
-    /// (about 8 GB while remeshing).
+    /// (about 8 GB remeshing a small net whole; more in parts on a large
+    /// net: docs/remesher.md, "The triangle budget").
     pub max_triangles: usize,
     /// Remesh in this many parts of the control net (METIS), each on its
     /// own thread, joined along interfaces meshed first and then moved;

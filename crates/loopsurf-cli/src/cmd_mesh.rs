@@ -49,7 +49,8 @@ pub struct Args {
     adapt: Option<Adapt>,
     /// The most output triangles: a density asking for more stops with an
     /// error saying how many, before the memory is spent (default: 20
-    /// million for the remesher, about 8 GB; 200 million for --charts).
+    /// million for the remesher, about 8 GB whole on a small net and more
+    /// in parts on a large one; 200 million for --charts).
     #[arg(long, value_name = "N")]
     max_triangles: Option<usize>,
     /// Remesh in K parts of the control net (METIS), each on its own
