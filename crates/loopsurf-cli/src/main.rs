@@ -15,11 +15,15 @@ mod cmd_snap;
 mod cmd_topology;
 mod curved_output;
 mod input;
+mod out_of_memory;
 mod part_options;
 mod queries;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
+
+#[global_allocator]
+static ALLOCATOR: out_of_memory::ExitWhenExhausted = out_of_memory::ExitWhenExhausted;
 
 /// Exact Loop subdivision surfaces from legacy triangulations.
 #[derive(Parser)]

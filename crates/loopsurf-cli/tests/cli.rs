@@ -138,6 +138,27 @@ fn bad_input_exits_2_with_one_line() {
     assert_clean_failure(&with_tags("0 999999\n"), "tags_bad.txt:1");
 }
 
+/// Out of memory, the command ends like any other error: one line, exit
+/// status 2, no file. The address space is capped (`ulimit -v`, 400 MB)
+/// below what refining the Viking eight times needs (110 million
+/// triangles, gigabytes), so an allocation fails.
+#[test]
+fn running_out_of_memory_exits_2_with_one_line() {
+    let out = scratch("out_of_memory.off");
+    let _ = std::fs::remove_file(&out);
+    let command = format!(
+        "ulimit -v 400000 && exec '{}' refine --example viking --levels 8 -o '{}'",
+        env!("CARGO_BIN_EXE_loopsurf"),
+        out.display()
+    );
+    let run = std::process::Command::new("sh")
+        .args(["-c", &command])
+        .output()
+        .expect("sh runs");
+    assert_clean_failure(&run, "out of memory: could not allocate");
+    assert!(!out.exists(), "a command out of memory wrote {out:?}");
+}
+
 #[test]
 fn eval_reads_back_bit_exact() {
     let queries = "0 0.25 0.25\n# a comment\n\n7 0 0\n12 0.1 0.8\n3 1 0\n";
