@@ -19,7 +19,13 @@ if [ "$format" = msh ]; then
     # shellcheck disable=SC2086
     python3 "$scripts/merge_msh_pieces.py" reference.vtu $pieces
 else
-    "$mpiexec" --allow-run-as-root --oversubscribe -np "$np" "$program" "$mesh" --hard-angle 30 --parts 4 "$@" -o "$name.pvtu" | tee "$name.log"
+    # Its output kept for the --verbose check below (a pipe would hide
+    # loopsurf-mpi's exit status from set -e).
+    "$mpiexec" --allow-run-as-root --oversubscribe -np "$np" "$program" "$mesh" --hard-angle 30 --parts 4 "$@" -o "$name.pvtu" > "$name.log" || {
+        cat "$name.log"
+        exit 1
+    }
+    cat "$name.log"
     python3 "$scripts/merge_pieces.py" reference.vtu "$name.pvtu"
 fi
 case " $* " in

@@ -141,7 +141,8 @@ fn bad_input_exits_2_with_one_line() {
 /// Out of memory, the command ends like any other error: one line, exit
 /// status 2, no file. The address space is capped (`ulimit -v`, 400 MB)
 /// below what refining the Viking eight times needs (110 million
-/// triangles, gigabytes), so an allocation fails.
+/// triangles, gigabytes), so an allocation fails; one thread, so that no
+/// thread's start-up meets the cap first on a machine with many cores.
 #[test]
 fn running_out_of_memory_exits_2_with_one_line() {
     let out = scratch("out_of_memory.off");
@@ -153,6 +154,7 @@ fn running_out_of_memory_exits_2_with_one_line() {
     );
     let run = std::process::Command::new("sh")
         .args(["-c", &command])
+        .env("RAYON_NUM_THREADS", "1")
         .output()
         .expect("sh runs");
     assert_clean_failure(&run, "out of memory: could not allocate");
