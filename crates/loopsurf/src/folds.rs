@@ -70,9 +70,9 @@ const FOLD_COSINE: f64 = -0.5;
 /// (the normal turns from −x to +x within 0.1 of the crease),
 /// anchor.off's flat faces at the inner corners of their L shapes (the
 /// normal flips ±y within 4e-7 of its plane; see [`crate::concave`]),
-/// pig.off next to its folded needle; none on the Viking, fandisk or CAD cubes. Every patch is evaluated,
-/// 153 times: on large nets, ask [`is_folded`] where a mesh
-/// shows trouble.
+/// pig.off next to its folded needle; none on the Viking, fandisk or CAD
+/// cubes. Every patch is evaluated, 153 times: on large nets, ask
+/// [`is_folded`] where a mesh shows trouble.
 pub fn folded_patches(surface: &Surface) -> Vec<usize> {
     (0..surface.net().triangles().len())
         .into_par_iter()
