@@ -16,7 +16,10 @@ use super::cuts::{blobs, control_rings, majority, mesh_rings, pieces_meeting};
 use super::join::{join, kept, sub_mesh, Joined};
 use super::outcome::{Outcome, TaskOutcome};
 use super::work::{run_tasks, PartWork, Pins};
-use super::{AVOID_RINGS, BAND_RINGS, CROSSING_RINGS, TOUCH_UP_BELOW, TOUCH_UP_RINGS};
+use super::{
+    AVOID_RINGS, BAND_RINGS, CROSSING_RINGS, FIRST_RINGS, LATER_RINGS, TOUCH_UP_BELOW,
+    TOUCH_UP_RINGS,
+};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::partition;
@@ -214,6 +217,7 @@ impl<'a> PartsJob<'a> {
                 let work = PartWork::new(
                     remesher,
                     &b.cover[p as usize],
+                    LATER_RINGS,
                     &b.control_owner,
                     p,
                     Some(&b.pass.shrunk),
@@ -246,7 +250,14 @@ impl<'a> PartsJob<'a> {
         let cover: Vec<u32> = (0..self.first_parts.len() as u32)
             .filter(|&t| self.first_parts[t as usize] == p as u32)
             .collect();
-        PartWork::new(&self.remesher, &cover, &self.first_parts, p as u32, None)
+        PartWork::new(
+            &self.remesher,
+            &cover,
+            FIRST_RINGS,
+            &self.first_parts,
+            p as u32,
+            None,
+        )
     }
 
     /// Advances to the next stage with the current stage's outcomes, one

@@ -9,7 +9,7 @@ use super::super::sizing::Sizing;
 use super::super::tolerance::chord_errors;
 use super::super::vertices::Placer;
 use super::super::{remesh, start, Remesher};
-use super::cuts::{fans, lowest_part};
+use super::cuts::{control_rings, fans, lowest_part};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::parameters::SurfacePoint;
@@ -92,27 +92,20 @@ pub(super) struct Piece {
 }
 
 impl PartWork {
-    /// A part covering the control triangles `cover` (and those sharing a
-    /// vertex with them) as a sub-net, its surface and its sizes, shrunk
-    /// by `shrunk` per global triangle (if given); it owns the triangles t
-    /// with `parts[t] == p`.
+    /// A part covering the control triangles `cover` and those within
+    /// `rings` vertex rings of them as a sub-net (its vertices land only
+    /// there), its surface and its sizes, shrunk by `shrunk` per global
+    /// triangle (if given); it owns the triangles t with `parts[t] == p`.
     pub(super) fn new(
         remesher: &Remesher,
         cover: &[u32],
+        rings: usize,
         parts: &[u32],
         p: u32,
         shrunk: Option<&[f64]>,
     ) -> Result<PartWork> {
         let net = remesher.surface.net();
-        let topo = net.topology();
-        let mut near = vec![false; net.triangles().len()];
-        for &t in cover {
-            for &v in &net.triangles()[t as usize] {
-                for &u in topo.fan(v as usize) {
-                    near[u as usize] = true;
-                }
-            }
-        }
+        let near = control_rings(net, cover.iter().copied(), rings);
         let near: Vec<u32> = (0..near.len() as u32)
             .filter(|&t| near[t as usize])
             .collect();
