@@ -12,11 +12,11 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 /// Where each cut's points start in the output's numbering.
-struct Numbering {
+pub(super) struct Numbering {
     /// Per control vertex: its output vertex, `NONE` where unused.
-    corner_index: Vec<u32>,
+    pub(super) corner_index: Vec<u32>,
     /// Per control edge: its first inner point.
-    edge_start: Vec<u32>,
+    pub(super) edge_start: Vec<u32>,
     /// Per control triangle: its first interior point.
     interior_start: Vec<u32>,
 }
@@ -25,11 +25,11 @@ struct Numbering {
 pub(super) fn assemble(
     surface: &Surface,
     corners: &[(SurfacePoint, DVec3)],
-    edge_cuts: &[EdgeCut],
-    tri_cuts: &[TriangleCut],
+    edge_cuts: &[Option<EdgeCut>],
+    tri_cuts: &[Option<TriangleCut>],
     diagonal: f64,
     measured: bool,
-) -> SurfaceMesh {
+) -> (SurfaceMesh, Numbering) {
     let (numbering, points, params) = number_points(surface, corners, edge_cuts, tri_cuts);
     let (triangles, charts) = chart_triangles(surface, &numbering, tri_cuts);
     let model = surface.model();
@@ -41,11 +41,12 @@ pub(super) fn assemble(
     let deviation = measured.then(|| {
         edge_cuts
             .iter()
+            .flatten()
             .map(|c| c.deviation)
-            .chain(tri_cuts.iter().map(|c| c.deviation))
+            .chain(tri_cuts.iter().flatten().map(|c| c.deviation))
             .fold(0.0, f64::max)
     });
-    SurfaceMesh {
+    let mesh = SurfaceMesh {
         points,
         triangles,
         params,
@@ -55,15 +56,16 @@ pub(super) fn assemble(
         hard_edge_curves,
         deviation,
         diagonal,
-    }
+    };
+    (mesh, numbering)
 }
 
 /// Every point once, with its parameters, in the output's order.
 fn number_points(
     surface: &Surface,
     corners: &[(SurfacePoint, DVec3)],
-    edge_cuts: &[EdgeCut],
-    tri_cuts: &[TriangleCut],
+    edge_cuts: &[Option<EdgeCut>],
+    tri_cuts: &[Option<TriangleCut>],
 ) -> (Numbering, Vec<DVec3>, Vec<SurfacePoint>) {
     let topo = surface.net().topology();
     let mut corner_index = vec![NONE; corners.len()];
@@ -79,6 +81,7 @@ fn number_points(
     let mut edge_start = Vec::with_capacity(edge_cuts.len());
     for (e, cut) in edge_cuts.iter().enumerate() {
         edge_start.push(points.len() as u32);
+        let Some(cut) = cut else { continue };
         let t = topo.edge_triangles()[e][0];
         points.extend_from_slice(&cut.points);
         params.extend(cut.params.iter().map(|q| SurfacePoint {
@@ -90,6 +93,7 @@ fn number_points(
     let mut interior_start = Vec::with_capacity(tri_cuts.len());
     for (t, cut) in tri_cuts.iter().enumerate() {
         interior_start.push(points.len() as u32);
+        let Some(cut) = cut else { continue };
         points.extend_from_slice(&cut.points);
         params.extend(cut.params.iter().map(|q| SurfacePoint {
             tri: t as u32,
@@ -124,12 +128,13 @@ impl Numbering {
 fn chart_triangles(
     surface: &Surface,
     numbering: &Numbering,
-    tri_cuts: &[TriangleCut],
+    tri_cuts: &[Option<TriangleCut>],
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
     let per_chart: Vec<Vec<[u32; 3]>> = tri_cuts
         .par_iter()
         .enumerate()
         .map(|(t, cut)| {
+            let Some(cut) = cut else { return Vec::new() };
             cut.tris
                 .iter()
                 .map(|tri| tri.map(|l| numbering.global(surface, t, &cut.pattern, l)))
@@ -150,7 +155,7 @@ fn chart_triangles(
 fn hard_edge_chains(
     surface: &Surface,
     numbering: &Numbering,
-    edge_cuts: &[EdgeCut],
+    edge_cuts: &[Option<EdgeCut>],
 ) -> (Vec<[u32; 2]>, Vec<u32>) {
     let net = surface.net();
     let model = surface.model();
@@ -158,8 +163,8 @@ fn hard_edge_chains(
     let mut hard_edges = Vec::new();
     let mut hard_edge_curves = Vec::new();
     for (e, &[a, b]) in net.topology().edges().iter().enumerate() {
-        if net.features().is_hard_edge(e) {
-            let n = edge_cuts[e].points.len() as u32;
+        if let (true, Some(cut)) = (net.features().is_hard_edge(e), &edge_cuts[e]) {
+            let n = cut.points.len() as u32;
             let chain: Vec<u32> = std::iter::once(corner_index[a as usize])
                 .chain((0..n).map(|i| edge_start[e] + i))
                 .chain(std::iter::once(corner_index[b as usize]))

@@ -33,12 +33,14 @@ pub mod high_order;
 mod isotropic;
 pub mod labels;
 mod pattern;
+mod planned;
 mod quality;
 mod rounds;
 
 pub use crate::geometry::min_angle;
 pub use high_order::{onto_surface, CurvedMesh, OntoSurface};
 pub use labels::{curve_edges, face_labels, CurveEdges};
+pub(crate) use planned::{chord_lengths, planned_chart, planned_edge_cuts, ChartPoint};
 pub use quality::{MeshQuality, ShortEdge, TriangleQuality};
 
 use crate::error::{Error, Result};
@@ -301,7 +303,8 @@ impl<'a> Mesher<'a> {
             &tri_cuts,
             diagonal,
             tolerance.is_some(),
-        ))
+        )
+        .0)
     }
 
     /// Each control triangle's first level: from the density and, under a
@@ -355,22 +358,7 @@ impl<'a> Mesher<'a> {
 
     /// Refuses meshes over the triangle budget before building them.
     fn check_budget(&self, levels: &[u32], cuts: &[u32]) -> Result<()> {
-        let estimate: u128 = levels
-            .iter()
-            .map(|&n| (n as u128) * (n as u128))
-            .sum::<u128>()
-            + cuts.iter().map(|&n| n as u128).sum::<u128>();
-        if estimate > self.max_triangles as u128 || estimate > i32::MAX as u128 {
-            let limit = self.max_triangles.min(i32::MAX as usize);
-            return Err(Error::OverBudget {
-                needed: estimate as f64,
-                limit,
-                message: format!(
-                    "the requested density needs about {estimate} triangles, over the limit of {limit}"
-                ),
-            });
-        }
-        Ok(())
+        check_budget(levels, cuts, self.max_triangles)
     }
 
     /// Cuts control triangle `t`: evaluates its interior points, triangulates,
@@ -534,6 +522,28 @@ fn finer(level: u32, error: f64, tolerance: f64, last: &mut Option<(u32, f64)>) 
     // estimate cannot blow up the count.
     let wanted = level as f64 * (error / tolerance).powf(1.0 / rate) * 1.05;
     (level + 1).max(density::level(wanted.min(4.0 * level as f64)))
+}
+
+/// Refuses a chart mesh at `levels` (per control triangle) with `cuts`
+/// (segments per control edge) over `max_triangles` (or over what an
+/// `i32` counts) before building it.
+pub(crate) fn check_budget(levels: &[u32], cuts: &[u32], max_triangles: usize) -> Result<()> {
+    let estimate: u128 = levels
+        .iter()
+        .map(|&n| (n as u128) * (n as u128))
+        .sum::<u128>()
+        + cuts.iter().map(|&n| n as u128).sum::<u128>();
+    if estimate > max_triangles as u128 || estimate > i32::MAX as u128 {
+        let limit = max_triangles.min(i32::MAX as usize);
+        return Err(Error::OverBudget {
+            needed: estimate as f64,
+            limit,
+            message: format!(
+                "the requested density needs about {estimate} triangles, over the limit of {limit}"
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The first triangle of edge `e` and the side of it the edge is.

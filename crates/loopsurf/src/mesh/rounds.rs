@@ -19,11 +19,26 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// each one's last (level, error), from which [`finer`] measures the rate
 /// of convergence.
 pub(super) struct Cuts {
+    /// Per control triangle: whether it is cut at all (a planned piece
+    /// cuts only its own triangles and their edges); `None`: every one.
+    keep: Option<Vec<bool>>,
     edges: Vec<Option<EdgeCut>>,
     triangles: Vec<Option<TriangleCut>>,
     edge_floor: Vec<u32>,
     edge_history: Vec<Option<(u32, f64)>>,
     triangle_history: Vec<Option<(u32, f64)>>,
+}
+
+/// The segments control edge `e` is cut into at `levels`: the more of the
+/// two its triangles ask (a lattice triangle its level, a sliver the
+/// edge's length at its spacing).
+pub(super) fn segments(topo: &Topology, levels: &[u32], slivers: &Slivers, e: usize) -> u32 {
+    topo.edge_triangles()[e]
+        .iter()
+        .filter(|&&t| t != NONE)
+        .map(|&t| slivers.segments(t as usize, e, levels[t as usize]))
+        .max()
+        .unwrap_or(1)
 }
 
 /// Counts cut triangles for a progress callback.
@@ -67,6 +82,7 @@ impl Cuts {
     /// triangles.
     pub fn new(edges: usize, triangles: usize) -> Cuts {
         Cuts {
+            keep: None,
             edges: (0..edges).map(|_| None).collect(),
             triangles: (0..triangles).map(|_| None).collect(),
             edge_floor: vec![1u32; edges],
@@ -75,21 +91,26 @@ impl Cuts {
         }
     }
 
+    /// Nothing cut yet, and only the control triangles t with `keep[t]`
+    /// and their edges to cut, of the `edges` control edges.
+    pub fn only(edges: usize, keep: Vec<bool>) -> Cuts {
+        let mut cuts = Cuts::new(edges, keep.len());
+        cuts.keep = Some(keep);
+        cuts
+    }
+
+    /// Whether control triangle t is to be cut.
+    fn kept(&self, t: usize) -> bool {
+        self.keep.as_ref().map_or(true, |keep| keep[t])
+    }
+
     /// The segments of each control edge: the more of the two its
     /// triangles ask at their levels (a lattice triangle its level, a
     /// sliver the edge's length at its spacing), or its floor if more
     /// still.
     pub fn edge_levels(&self, topo: &Topology, levels: &[u32], slivers: &Slivers) -> Vec<u32> {
         (0..self.edges.len())
-            .map(|e| {
-                let pair = topo.edge_triangles()[e];
-                pair.iter()
-                    .filter(|&&t| t != NONE)
-                    .map(|&t| slivers.segments(t as usize, e, levels[t as usize]))
-                    .max()
-                    .unwrap_or(1)
-                    .max(self.edge_floor[e])
-            })
+            .map(|e| segments(topo, levels, slivers, e).max(self.edge_floor[e]))
             .collect()
     }
 
@@ -101,7 +122,13 @@ impl Cuts {
         corners: &[(SurfacePoint, DVec3)],
         tolerance: Option<f64>,
     ) -> Result<()> {
+        let topo = surface.net().topology();
         let dirty: Vec<usize> = (0..self.edges.len())
+            .filter(|&e| {
+                topo.edge_triangles()[e]
+                    .iter()
+                    .any(|&t| t != NONE && self.kept(t as usize))
+            })
             .filter(|&e| {
                 self.edges[e]
                     .as_ref()
@@ -143,6 +170,7 @@ impl Cuts {
             isotropic: slivers.is_sliver(t),
         };
         let dirty: Vec<usize> = (0..self.triangles.len())
+            .filter(|&t| self.kept(t))
             .filter(|&t| {
                 self.triangles[t]
                     .as_ref()
@@ -177,7 +205,7 @@ impl Cuts {
     ) -> bool {
         let mut violated = false;
         for (e, cut) in self.edges.iter().enumerate() {
-            let cut = cut.as_ref().expect("every edge is cut");
+            let Some(cut) = cut else { continue };
             if cut.deviation > tolerance {
                 self.edge_floor[e] = finer(
                     cuts_per_edge[e],
@@ -197,7 +225,7 @@ impl Cuts {
             }
         }
         for (t, cut) in self.triangles.iter().enumerate() {
-            let cut = cut.as_ref().expect("every triangle is cut");
+            let Some(cut) = cut else { continue };
             if cut.deviation > tolerance {
                 levels[t] = finer(
                     levels[t],
@@ -218,14 +246,9 @@ impl Cuts {
             .fold(0.0, f64::max)
     }
 
-    /// The cuts, every one made.
-    pub fn into_cuts(self) -> (Vec<EdgeCut>, Vec<TriangleCut>) {
-        let edges = self.edges.into_iter().map(|c| c.expect("cut")).collect();
-        let triangles = self
-            .triangles
-            .into_iter()
-            .map(|c| c.expect("cut"))
-            .collect();
-        (edges, triangles)
+    /// The cuts: every one made, or those of the triangles kept and their
+    /// edges ([`Cuts::only`]).
+    pub fn into_cuts(self) -> (Vec<Option<EdgeCut>>, Vec<Option<TriangleCut>>) {
+        (self.edges, self.triangles)
     }
 }

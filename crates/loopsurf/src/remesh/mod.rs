@@ -82,8 +82,8 @@ pub const DEFAULT_GRADATION: f64 = 1.3;
 /// The default triangle budget ([`Remesher::max_triangles`]): about 8 GB
 /// at the 0.4 KB per output triangle the remesher holds at its peak on a
 /// small net, whole (pig at 0.2%: 883k triangles, 355 MB). In parts on a
-/// large net it holds more (bunny00 refined twice in 8 parts: 1.3 KB per
-/// triangle), which the budget does not count. A tolerance on a surface
+/// large net it holds more (bunny00 refined twice in 8 parts: 1.2 KB per
+/// triangle in one process), which the budget does not count. A tolerance on a surface
 /// that folds (mpi.off: curvatures of 68 000 per unit) can ask for sizes
 /// no memory holds, and the user should hear so, not meet the
 /// out-of-memory killer.

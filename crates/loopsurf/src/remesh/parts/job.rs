@@ -15,7 +15,8 @@
 use super::cuts::{blobs, control_rings, majority, mesh_rings, pieces_meeting};
 use super::join::{join, kept, sub_mesh, Joined};
 use super::outcome::{Outcome, TaskOutcome};
-use super::work::{run_tasks, PartWork, Pins};
+use super::plan::{Pins, StartPlan};
+use super::work::{run_tasks, PartWork};
 use super::{
     AVOID_RINGS, BAND_RINGS, CROSSING_RINGS, FIRST_RINGS, LATER_RINGS, TOUCH_UP_BELOW,
     TOUCH_UP_RINGS,
@@ -24,7 +25,7 @@ use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::partition;
 use crate::remesh::budget::expected_over;
-use crate::remesh::{start, Remesher};
+use crate::remesh::Remesher;
 use crate::topology::NONE;
 use rayon::prelude::*;
 
@@ -48,8 +49,8 @@ enum Stage {
     /// Each part's sub-net, surface and sizes; the outcome is the largest
     /// size the part asks for.
     Sizes,
-    /// The chart mesh at that largest size, cut along the control edges
-    /// between the parts, each piece remeshed with the cut pinned.
+    /// Each part's chart mesh of its own control triangles at the levels
+    /// planned from the sizes, remeshed with the points it shares pinned.
     First(Box<FirstPass>),
     /// The band around the first interfaces, cut by a second partition.
     Band(Box<BandPass>),
@@ -65,12 +66,9 @@ enum Stage {
 }
 
 struct FirstPass {
-    chart: SurfaceMesh,
-    /// Per chart triangle: its part.
-    owner: Vec<u32>,
-    /// The chart vertices two parts share, pinned.
+    plan: StartPlan,
+    /// The start's points two parts share, pinned.
     pins: Pins,
-    shared: Vec<bool>,
     /// Per part: the triangles its sizes ask for, what its task weighs.
     weights: Vec<usize>,
 }
@@ -193,9 +191,18 @@ impl<'a> PartsJob<'a> {
                 let work = self.first_work(i)?;
                 let largest = work.sizing.largest(|t| work.owned[t]);
                 let expected = expected_over(work.surface.net(), &work.sizing, |t| work.owned[t]);
+                let globals = work.part.global_triangles();
+                let sizes = match work.sizing.adapts_to() {
+                    Some(_) => (0..globals.len())
+                        .filter(|&t| work.owned[t])
+                        .map(|t| (globals[t], work.sizing.of_triangle(t)))
+                        .collect(),
+                    None => Vec::new(),
+                };
                 Outcome::Sizes {
                     largest,
                     expected,
+                    sizes,
                     work: Some(Box::new(work)),
                 }
             }
@@ -208,9 +215,14 @@ impl<'a> PartsJob<'a> {
                         &built
                     }
                 };
-                Outcome::Piece(Box::new(
-                    work.remesh(&f.chart, &f.owner, &f.pins, None, i as u32)?,
-                ))
+                let net = remesher.surface.net();
+                Outcome::Piece(Box::new(work.remesh_first(
+                    net,
+                    &f.plan,
+                    &f.pins,
+                    remesher.sliver_cuts,
+                    i as u32,
+                )?))
             }
             Stage::Band(b) | Stage::Crossings(b) | Stage::TouchUp(b) => {
                 let p = b.parts[i];
@@ -225,7 +237,7 @@ impl<'a> PartsJob<'a> {
                 let (start, owner, pins, sizes) = (&b.pass.mesh, &b.owner, &b.pins, &b.pass.sizes);
                 let piece = match self.stage {
                     Stage::TouchUp(_) => work.touch_up(start, owner, pins, sizes, p)?,
-                    _ => work.remesh(start, owner, pins, Some(sizes), p)?,
+                    _ => work.remesh(start, owner, pins, sizes, p)?,
                 };
                 Outcome::Piece(Box::new(piece))
             }
@@ -297,9 +309,9 @@ impl<'a> PartsJob<'a> {
             Stage::First(f) => {
                 // Dropped side by side: a part's surface is many small blocks.
                 self.works.par_iter_mut().for_each(|w| *w = None);
-                let (joined, on_interface) =
-                    (join_pieces(&self.remesher, Vec::new(), outcomes)?, f.shared);
-                Stage::Band(Box::new(self.band_pass(joined, &on_interface)?))
+                drop(f);
+                let joined = join_pieces(&self.remesher, Vec::new(), outcomes)?;
+                Stage::Band(Box::new(self.band_pass(joined)?))
             }
             Stage::Band(b) => {
                 let keep = kept(&b.pass, &b.owner);
@@ -336,65 +348,72 @@ impl<'a> PartsJob<'a> {
         })
     }
 
-    /// The first pass from the sizes: the chart mesh at the largest size
-    /// any part asks for, cut between the parts, the cut pinned.
+    /// The first pass from the sizes: its start planned over the whole
+    /// net at the sizes the parts ask for ([`StartPlan`]). Where sizes
+    /// follow curvature and that start would pass the budget, it is
+    /// planned at the largest size alone, as the whole remesher's start
+    /// falls back to.
     fn first_pass(&mut self, outcomes: Vec<TaskOutcome>) -> Result<FirstPass> {
         let mut largest: f64 = 0.0;
         let mut weights = Vec::with_capacity(outcomes.len());
+        let mut per_triangle = Vec::new();
         for (p, outcome) in outcomes.into_iter().enumerate() {
             match outcome.0 {
                 Outcome::Sizes {
                     largest: h,
                     expected,
+                    sizes,
                     work,
                 } => {
                     largest = largest.max(h);
                     weights.push(expected.round() as usize);
+                    per_triangle.extend(sizes);
                     self.works[p] = work.map(|w| *w);
                 }
                 Outcome::Piece(_) => return Err(wrong_outcome("sizes")),
             }
         }
-        let surface = self.remesher.surface;
-        let (adapt_to, budget) = self.remesher.settings()?;
-        let chart = start::chart_mesh(
-            surface,
-            largest,
-            adapt_to,
-            &budget,
-            self.remesher.sliver_cuts,
-        )?;
-        let owner: Vec<u32> = chart
-            .charts
-            .iter()
-            .map(|&c| self.first_parts[c as usize])
-            .collect();
-        let shared: Vec<bool> = pieces_meeting(&chart.triangles, &owner, chart.points.len())
-            .iter()
-            .map(|&m| m >= 2)
-            .collect();
-        let pins = Pins::new(&chart.triangles, &owner, chart.points.len(), |v| shared[v]);
+        let net = self.remesher.surface.net();
+        let (_, budget) = self.remesher.settings()?;
+        let uniform = vec![largest; net.triangles().len()];
+        let mut sizes = uniform.clone();
+        for &(t, h) in &per_triangle {
+            let slot = sizes.get_mut(t as usize).ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "a part's size for control triangle {t} of {}",
+                    net.triangles().len()
+                ))
+            })?;
+            *slot = h.min(largest);
+        }
+        let plan = |sizes: &[f64]| {
+            StartPlan::new(
+                net,
+                &self.first_parts,
+                sizes,
+                self.remesher.sliver_cuts,
+                budget.start_allowance(),
+            )
+        };
+        let (plan, pins) = match plan(&sizes) {
+            Err(_) if !per_triangle.is_empty() => plan(&uniform),
+            planned => planned,
+        }
+        .map_err(|e| e.during(budget.start_context()))?;
         Ok(FirstPass {
-            chart,
-            owner,
+            plan,
             pins,
-            shared,
             weights,
         })
     }
 
     /// The band pass over the first pass's mesh `pass`, whose vertices
-    /// came from the start's `on_interface` ones where `pass.from` says:
-    /// the band around the interfaces, cut along a second partition that
-    /// keeps away from them.
-    fn band_pass(&self, pass: Joined, on_interface: &[bool]) -> Result<BandPass> {
+    /// pinned on an interface `pass.from` names: the band around the
+    /// interfaces, cut along a second partition that keeps away from them.
+    fn band_pass(&self, pass: Joined) -> Result<BandPass> {
         let net = self.remesher.surface.net();
         let mesh = &pass.mesh;
-        let old: Vec<bool> = pass
-            .from
-            .iter()
-            .map(|&g| g != NONE && on_interface[g as usize])
-            .collect();
+        let old: Vec<bool> = pass.from.iter().map(|&g| g != NONE).collect();
         let old_tris = mesh
             .params
             .iter()

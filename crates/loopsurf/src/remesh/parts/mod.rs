@@ -2,10 +2,15 @@
 //! partitioned surfaces), each part remeshed on its own surface, and the
 //! pieces joined along the interfaces they share.
 //!
-//! **The interfaces are meshed first, once.** The start is the chart mesh
-//! of the whole surface: its points on a control edge are computed once
-//! and shared by the triangles on both sides, so cut along the control
-//! edges between parts its pieces already meet vertex for vertex. The
+//! **The interfaces are meshed first, the same way from both sides.** The
+//! start is planned over the whole control net from the net alone (chord
+//! lengths) and the sizes the parts ask for ([`plan`]): a level per control
+//! triangle, graded over the whole net, and an id for every start point two
+//! parts share (a control vertex its index, then the inner points of each
+//! edge between two parts). Each part then builds the chart mesh of its own
+//! control triangles on its own sub-net's surface; a control edge's cut
+//! depends only on the net and the levels, so the pieces meet vertex for
+//! vertex, and no process builds the start of the whole surface. The
 //! vertices on an interface are pinned: no pass moves or removes them, and
 //! no pass splits an edge between two of them on a piece's border. Each
 //! piece then runs the remesher's rounds, polish and tolerance rounds
@@ -35,14 +40,14 @@
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
 //! triangles sharing a vertex with them (where a vertex next to the
-//! interface may move, and where the start stores the interface's
-//! points), and the halo that makes all of these evaluate bit for bit as
+//! interface may move), and the halo that makes all of these evaluate bit for bit as
 //! in the whole. Its sizes come from that surface too. So a part's piece is
-//! a function of the start, the partition and the part alone: the same
+//! a function of the plan, the partition and the part alone: the same
 //! bits whichever thread computes it, and whatever runs beside it.
 //!
 //! The files: [`job`] (the stages and their tasks, for threads and for
-//! MPI ranks alike), [`outcome`] (a task's outcome as bytes), [`cuts`]
+//! MPI ranks alike), [`plan`] (the first pass's start, planned over the
+//! whole net), [`outcome`] (a task's outcome as bytes), [`cuts`]
 //! (which part a triangle goes to, shared vertices, rings, fans, blobs),
 //! [`work`] (one part's sub-net, piece and remesh, and the workers) and
 //! [`join`] (pieces into one mesh).
@@ -51,6 +56,7 @@ mod cuts;
 mod job;
 mod join;
 mod outcome;
+mod plan;
 mod work;
 
 use super::Remesher;

@@ -9,7 +9,7 @@
 //! |---|---|
 //! | 56 per vertex | x y z (f64), control triangle (u32), v w (f64), pinned start vertex or 0xffffffff (u32), target size (f64) |
 //! | 16 per triangle | a b c (u32), model face (u32) |
-//! | 12 per shrink factor | control triangle (u32), factor (f64) |
+//! | 12 per control-triangle value | control triangle (u32), value (f64): a piece's shrink factors, or the sizes of a part's own triangles where they follow curvature |
 //! | 8 per number | the largest size, then the triangles expected; or the diagonal, then the chord error measured if any |
 //!
 //! A rank's outcomes are a u64 count, then per outcome its task (u64),
@@ -25,7 +25,12 @@ use glam::DVec3;
 
 const MAGIC: &[u8; 8] = b"LOOPTASK";
 const SIZES: [u64; 4] = [56, 16, 12, 8];
-const NAMES: [&str; 4] = ["vertices", "triangles", "shrink factors", "numbers"];
+const NAMES: [&str; 4] = [
+    "vertices",
+    "triangles",
+    "control-triangle values",
+    "numbers",
+];
 const SIZES_TAG: u32 = 0;
 const PIECE: u32 = 1;
 
@@ -35,11 +40,14 @@ pub struct TaskOutcome(pub(super) Outcome);
 pub(super) enum Outcome {
     /// A part's sizes: the largest size it asks for, about how many
     /// triangles it asks for over its own control triangles (what its
-    /// first-pass task weighs), and its work where it was built here (not
-    /// sent: the rank that built it keeps it for its first pass).
+    /// first-pass task weighs), where sizes follow curvature each of its
+    /// own control triangles' size (global id, size), and its work where
+    /// it was built here (not sent: the rank that built it keeps it for
+    /// its first pass).
     Sizes {
         largest: f64,
         expected: f64,
+        sizes: Vec<(u32, f64)>,
         work: Option<Box<PartWork>>,
     },
     Piece(Box<Piece>),
@@ -51,9 +59,13 @@ impl TaskOutcome {
         let mut out = Vec::new();
         match &self.0 {
             Outcome::Sizes {
-                largest, expected, ..
+                largest,
+                expected,
+                sizes,
+                ..
             } => {
-                start(&mut out, MAGIC, SIZES_TAG, &[0, 0, 0, 2]);
+                start(&mut out, MAGIC, SIZES_TAG, &[0, 0, sizes.len() as u64, 2]);
+                pairs(&mut out, sizes);
                 f64s(&mut out, &[*largest, *expected]);
             }
             Outcome::Piece(piece) => {
@@ -79,10 +91,7 @@ impl TaskOutcome {
                         out.extend_from_slice(&i.to_le_bytes());
                     }
                 }
-                for &(t, f) in &piece.shrunk {
-                    out.extend_from_slice(&t.to_le_bytes());
-                    f64s(&mut out, &[f]);
-                }
+                pairs(&mut out, &piece.shrunk);
                 f64s(&mut out, &[mesh.diagonal]);
                 if let Some(d) = mesh.deviation {
                     f64s(&mut out, &[d]);
@@ -104,11 +113,15 @@ impl TaskOutcome {
         let (mut r, tag, counts) = frame.open(bytes)?;
         let [nv, nt, ns, nn] = [0, 1, 2, 3].map(|i| counts[i] as usize);
         match (tag, nn) {
-            (SIZES_TAG, 2) if nv + nt + ns == 0 => Ok(TaskOutcome(Outcome::Sizes {
-                largest: r.f64(),
-                expected: r.f64(),
-                work: None,
-            })),
+            (SIZES_TAG, 2) if nv + nt == 0 => {
+                let sizes = (0..ns).map(|_| (r.u32(), r.f64())).collect();
+                Ok(TaskOutcome(Outcome::Sizes {
+                    sizes,
+                    largest: r.f64(),
+                    expected: r.f64(),
+                    work: None,
+                }))
+            }
             (PIECE, 1 | 2) => {
                 let mut points = Vec::with_capacity(nv);
                 let mut params = Vec::with_capacity(nv);
@@ -211,6 +224,14 @@ fn word(bytes: &[u8], at: &mut usize, what: &str) -> Result<u64> {
     let x = u64::from_le_bytes(bytes[*at..end].try_into().expect("8 bytes"));
     *at = end;
     Ok(x)
+}
+
+/// (control triangle, value) pairs.
+fn pairs(out: &mut Vec<u8>, pairs: &[(u32, f64)]) {
+    for &(t, x) in pairs {
+        out.extend_from_slice(&t.to_le_bytes());
+        f64s(out, &[x]);
+    }
 }
 
 fn f64s(out: &mut Vec<u8>, xs: &[f64]) {

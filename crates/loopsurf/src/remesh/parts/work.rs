@@ -9,13 +9,15 @@ use super::super::sizing::Sizing;
 use super::super::tolerance::chord_errors;
 use super::super::vertices::Placer;
 use super::super::{remesh, start, Remesher};
-use super::cuts::{control_rings, fans, lowest_part};
+use super::cuts::{control_rings, fans};
+use super::plan::{Pins, StartPlan};
 use crate::error::{Error, Result};
-use crate::mesh::SurfaceMesh;
+use crate::mesh::{planned_chart, SurfaceMesh};
 use crate::parameters::SurfacePoint;
 use crate::partition::Part;
 use crate::surface::Surface;
 use crate::topology::NONE;
+use crate::ControlNet;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -37,46 +39,6 @@ pub(super) struct PartWork {
     pub(super) budget: Budget,
     /// Per local triangle: the shrink factor its sizes start with.
     pub(super) shrunk: Vec<f64>,
-}
-
-/// A start's pinned vertices: per vertex its pinned id (itself) or
-/// [`NONE`], the lowest part holding it (which alone may join two
-/// pinned vertices anew:
-/// [`Remeshing::may_join`](super::super::remeshing::Remeshing::may_join)),
-/// and whether a triangle no part remeshes holds it. That kept piece comes
-/// before every part: it may already join two of its vertices, so no part
-/// may (bull.off with its concave corners seamed, in 4 parts: part 0 cut
-/// a corner between two vertices that kept triangles joined, and the
-/// joined mesh held that edge four times).
-pub(super) struct Pins {
-    pub(super) id: Vec<u32>,
-    pub(super) lowest: Vec<u32>,
-    pub(super) kept: Vec<bool>,
-}
-
-impl Pins {
-    /// The `n` vertices of a start whose triangle t part `owner[t]` holds,
-    /// pinned where `pinned(v)`.
-    pub(super) fn new(
-        triangles: &[[u32; 3]],
-        owner: &[u32],
-        n: usize,
-        pinned: impl Fn(usize) -> bool,
-    ) -> Pins {
-        let mut kept = vec![false; n];
-        for (tri, _) in triangles.iter().zip(owner).filter(|(_, &p)| p == NONE) {
-            for &v in tri {
-                kept[v as usize] = true;
-            }
-        }
-        Pins {
-            id: (0..n as u32)
-                .map(|v| if pinned(v as usize) { v } else { NONE })
-                .collect(),
-            lowest: lowest_part(triangles, owner, n),
-            kept,
-        }
-    }
 }
 
 /// One part's piece of the mesh, in the whole's triangle ids, and each
@@ -140,43 +102,81 @@ impl PartWork {
         })
     }
 
-    /// Remeshes part `p`'s piece of `start` (whose triangle t part
-    /// `owner[t]` owns), vertex v pinned where `pins.id[v]` is not
-    /// [`NONE`]. Vertices land only in the triangles that evaluate as in
-    /// the whole (the part's [`Part`] owns them). A later pass (`bounds`
-    /// given: each vertex's size from the pass before) starts from a
-    /// remeshed mesh, not from the chart mesh's lattices, and is not
-    /// shaken. bunny00 in 8 parts at five sizes from 0.25% to 0.5% of the
-    /// diagonal, shaken against not: 196 against 108 triangles below 35°
-    /// (57 whole), mean-min 0.03–0.06° higher unshaken, the smallest
-    /// angles no better either way (23.8–29.5° against 20.8–32.7°; whole
-    /// 32.5–34.4°).
+    /// Remeshes part `p`'s piece of `start`, a remeshed mesh (whose
+    /// triangle t part `owner[t]` owns), vertex v pinned where `pins.id[v]`
+    /// is not [`NONE`], each pinned vertex's size bounded by `bounds` (each
+    /// start vertex's size from the pass before). Vertices land only in
+    /// the triangles that evaluate as in the whole (the part's [`Part`]
+    /// owns them). Unlike the first pass, it is not shaken: bunny00 in 8
+    /// parts at five sizes from 0.25% to 0.5% of the diagonal, shaken
+    /// against not: 196 against 108 triangles below 35° (57 whole),
+    /// mean-min 0.03–0.06° higher unshaken, the smallest angles no better
+    /// either way (23.8–29.5° against 20.8–32.7°; whole 32.5–34.4°).
     pub(super) fn remesh(
         &self,
         start: &SurfaceMesh,
         owner: &[u32],
         pins: &Pins,
-        bounds: Option<&[f64]>,
+        bounds: &[f64],
         p: u32,
     ) -> Result<Piece> {
         let (mut work, ids) = self.start_work(start, owner, pins, p)?;
-        if let Some(bounds) = bounds {
-            for (i, &g) in ids.iter().enumerate() {
-                if work.is_pinned(i as u32) {
-                    work.size_bound[i] = bounds[g as usize];
-                }
+        for (i, &g) in ids.iter().enumerate() {
+            if work.is_pinned(i as u32) {
+                work.size_bound[i] = bounds[g as usize];
             }
         }
-        let shrunk = Some(self.shrunk.clone());
+        self.finish_remesh(&mut work, false)
+    }
+
+    /// `work` remeshed on the part's sizes (shaken if `shake`), as a piece.
+    fn finish_remesh(&self, work: &mut Remeshing, shake: bool) -> Result<Piece> {
         let (deviation, factors) = remesh(
-            &mut work,
+            work,
             &self.sizing,
             self.tolerance,
             &self.budget,
-            shrunk,
-            bounds.is_none(),
+            Some(self.shrunk.clone()),
+            shake,
         )?;
-        Ok(self.piece(&work, deviation, &factors))
+        Ok(self.piece(work, deviation, &factors))
+    }
+
+    /// Part `p`'s piece of the first pass: the chart mesh of its own
+    /// control triangles at `plan`'s levels, on its own surface
+    /// ([`planned_chart`]), its points that other parts share pinned
+    /// (`pins`, by their ids in `plan`), remeshed. `net` is the whole
+    /// control net.
+    pub(super) fn remesh_first(
+        &self,
+        net: &ControlNet,
+        plan: &StartPlan,
+        pins: &Pins,
+        sliver_cuts: bool,
+        p: u32,
+    ) -> Result<Piece> {
+        let globals = self.part.global_triangles();
+        let levels: Vec<u32> = globals.iter().map(|&g| plan.levels[g as usize]).collect();
+        let (chart, sources) = planned_chart(&self.surface, &levels, &self.owned, sliver_cuts)?;
+        let (triangles, from) = split_fans(&chart.triangles);
+        let piece = without_curves(
+            from.iter().map(|&v| chart.points[v as usize]).collect(),
+            triangles,
+            from.iter().map(|&v| chart.params[v as usize]).collect(),
+            chart
+                .charts
+                .iter()
+                .map(|&c| self.whole_face[c as usize])
+                .collect(),
+            None,
+            chart.diagonal,
+        );
+        let ids: Vec<u32> = from
+            .iter()
+            .map(|&v| plan.pin(net, &self.part, sources[v as usize]))
+            .collect();
+        let mut work = self.begin(&piece, &ids, pins, p)?;
+        self.finish_remesh(&mut work, true)
     }
 
     /// Touches up part `p`'s piece of `start` without remeshing it: max–min
@@ -234,14 +234,27 @@ impl PartWork {
         p: u32,
     ) -> Result<(Remeshing<'_>, Vec<u32>)> {
         let (piece, ids) = self.start_piece(start, owner, p)?;
+        let work = self.begin(&piece, &ids, pins, p)?;
+        Ok((work, ids))
+    }
+
+    /// The remeshing of `piece` as it starts, its vertex i pinned where
+    /// `pins` pins `ids[i]` (no id: [`NONE`]).
+    fn begin(
+        &self,
+        piece: &SurfaceMesh,
+        ids: &[u32],
+        pins: &Pins,
+        p: u32,
+    ) -> Result<Remeshing<'_>> {
         let placer = Placer::within(&self.surface, &self.whole_face, |t| self.part.is_owned(t));
-        let mut work = start::start_from(placer, &piece)?;
-        for (i, &g) in ids.iter().enumerate() {
+        let mut work = start::start_from(placer, piece)?;
+        for (i, &g) in ids.iter().enumerate().filter(|x| *x.1 != NONE) {
             work.pinned[i] = pins.id[g as usize];
             let g = g as usize;
             work.yields[i] = work.is_pinned(i as u32) && (pins.kept[g] || pins.lowest[g] < p);
         }
-        Ok((work, ids))
+        Ok(work)
     }
 
     /// The piece `work` has made, in the whole's triangle ids, with the
@@ -281,19 +294,8 @@ impl PartWork {
         let mine: Vec<usize> = (0..start.triangles.len())
             .filter(|&t| owner[t] == p)
             .collect();
-        let fans = fans(&mine.iter().map(|&t| start.triangles[t]).collect::<Vec<_>>());
-        let mut local = HashMap::new();
-        let mut ids = Vec::new();
-        let mut triangles = Vec::with_capacity(mine.len());
-        for (i, &t) in mine.iter().enumerate() {
-            let tri = start.triangles[t];
-            triangles.push([0, 1, 2].map(|k| {
-                *local.entry(fans[3 * i + k]).or_insert_with(|| {
-                    ids.push(tri[k]);
-                    ids.len() as u32 - 1
-                })
-            }));
-        }
+        let (triangles, ids) =
+            split_fans(&mine.iter().map(|&t| start.triangles[t]).collect::<Vec<_>>());
         let params = ids
             .iter()
             .map(|&v| {
@@ -326,6 +328,28 @@ impl PartWork {
                 ))
             })
     }
+}
+
+/// `triangles` renumbered so that where they form several fans at a
+/// vertex (a piece that touches itself there), each fan has its own copy
+/// of it; and per new vertex, its old one.
+fn split_fans(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<u32>) {
+    let fans = fans(triangles);
+    let mut local = HashMap::new();
+    let mut from = Vec::new();
+    let renumbered = triangles
+        .iter()
+        .enumerate()
+        .map(|(i, tri)| {
+            [0, 1, 2].map(|k| {
+                *local.entry(fans[3 * i + k]).or_insert_with(|| {
+                    from.push(tri[k]);
+                    from.len() as u32 - 1
+                })
+            })
+        })
+        .collect();
+    (renumbered, from)
 }
 
 /// Every task of a stage (`weights.len()` of them, task i about
