@@ -11,16 +11,17 @@
  * are the mesh `loopsurf mesh --parts K` makes, bit for bit, on any
  * number of ranks.
  *
- * Usage: mpirun -np N loopsurf-mpi MESH [--hard-angle DEG] [--repair]
- *          [--size H] [--tolerance EPS] [--adapt curvature]
- *          [--gradation G] [--max-triangles N] [--parts K]
- *          [--threads T] [--binary] [--verbose] -o OUT.pvtu|OUT.msh
+ * Usage (`loopsurf-mpi --help` prints it): mpirun -np N loopsurf-mpi MESH
+ *          [--hard-angle DEG] [--repair] [--size H] [--tolerance EPS]
+ *          [--adapt curvature] [--gradation G] [--max-triangles N]
+ *          [--parts K] [--threads T] [--binary] [--verbose]
+ *          -o OUT.pvtu|OUT.msh
  * The options mean what they mean to `loopsurf mesh`; K defaults to the
  * number of ranks (at least 2), T to the library's default. --binary
  * writes binary .msh, or .vtu pieces with base64 arrays. --verbose
  * prints, per stage, the slowest rank's time in its tasks, in the
- * exchange and in advancing (every rank advances alike: joins, cuts and
- * the start mesh are not shared out), and each rank's peak resident
+ * exchange and in advancing (every rank advances alike: joins and cuts
+ * are not shared out), and each rank's peak resident
  * memory so far (getrusage), so a run that is to grow can be sized. Bad
  * arguments or input: one line on rank 0's stderr, exit status 2. */
 #include <loopsurf.h>
@@ -44,6 +45,34 @@ typedef struct {
 } args;
 
 static int rank_, ranks_;
+
+static const char USAGE[] =
+    "usage: mpirun -np N loopsurf-mpi MESH [options] -o OUT.pvtu|OUT.msh\n"
+    "\n"
+    "Remeshes MESH's limit surface in parts shared out among the ranks, as\n"
+    "`loopsurf mesh --parts K` does on threads (the merged pieces are its mesh,\n"
+    "bit for bit), and writes each rank's piece with global node ids.\n"
+    "\n"
+    "  -o, --output OUT      OUT.pvtu: rank q writes OUT_q.vtu, rank 0 the .pvtu;\n"
+    "                        OUT.msh: rank q writes OUT_q.msh (gmsh 4.1)\n"
+    "  --hard-angle DEG      tag every edge whose dihedral angle exceeds DEG as hard\n"
+    "  --repair              triangulate, orient, split non-manifold vertices, keep\n"
+    "                        degenerate triangles while reading\n"
+    "  --size H              target edge length (model units)\n"
+    "  --tolerance EPS       chord tolerance, times the bounding-box diagonal\n"
+    "  --adapt curvature     sizes by curvature under the tolerance (the default\n"
+    "                        without --size or --tolerance)\n"
+    "  --gradation G         largest ratio of neighbouring sizes per edge\n"
+    "  --max-triangles N     the triangle budget\n"
+    "  --parts K             parts of the control net (default: the rank count, at\n"
+    "                        least 2)\n"
+    "  --threads T           threads per rank\n"
+    "  --binary              binary .msh, or .vtu pieces with base64 arrays\n"
+    "  --verbose             per stage: the slowest rank's time in tasks, exchange\n"
+    "                        and advance; every rank's peak resident memory\n"
+    "  -h, --help            this text\n"
+    "\n"
+    "Bad arguments or input: one line on stderr, exit status 2.\n";
 
 /* One line on rank 0, then every rank leaves with status 2. */
 static void refuse(const char* fmt, const char* a, const char* b) {
@@ -108,7 +137,11 @@ static args parse(int argc, char** argv) {
                     strcmp(f, "--parts") == 0 || strcmp(f, "--threads") == 0 ||
                     strcmp(f, "-o") == 0 || strcmp(f, "--output") == 0;
         if (takes && v == NULL) refuse("%s needs a value%s", f, "");
-        if (strcmp(f, "--hard-angle") == 0) {
+        if (strcmp(f, "-h") == 0 || strcmp(f, "--help") == 0) {
+            if (rank_ == 0) fputs(USAGE, stdout);
+            MPI_Finalize();
+            exit(0);
+        } else if (strcmp(f, "--hard-angle") == 0) {
             a.hard_angle = number(f, v);
             a.has_hard_angle = 1;
         } else if (strcmp(f, "--verbose") == 0) {
@@ -141,7 +174,7 @@ static args parse(int argc, char** argv) {
         } else if (strcmp(f, "-o") == 0 || strcmp(f, "--output") == 0) {
             a.output = v;
         } else if (f[0] == '-') {
-            refuse("unknown option %s%s", f, "");
+            refuse("unknown option %s (see --help)%s", f, "");
         } else if (a.input == NULL) {
             a.input = f;
             continue;
@@ -150,7 +183,7 @@ static args parse(int argc, char** argv) {
         }
         i++;
     }
-    if (a.input == NULL) refuse("no input mesh given%s%s", "", "");
+    if (a.input == NULL) refuse("no input mesh given (see --help)%s%s", "", "");
     if (a.output == NULL) refuse("no output given (-o OUT.pvtu or OUT.msh)%s%s", "", "");
     size_t n = strlen(a.output);
     a.msh = n >= 4 && strcmp(a.output + n - 4, ".msh") == 0;
