@@ -174,6 +174,24 @@ impl Surface {
         }
     }
 
+    /// The approximating surface of `net` (as [`Surface::new`]), sharing
+    /// `other`'s table of special-corner configurations: each depends only
+    /// on the pattern of triangles, hard edges and tags around a corner,
+    /// so the surfaces of many sub-nets of one net (the parts of a
+    /// remeshing by parts) build each configuration once, and evaluate
+    /// exactly as with a table of their own.
+    pub(crate) fn sharing_configurations(net: &ControlNet, other: &Surface) -> Result<Surface> {
+        let table = other.evaluator.configuration_table().clone();
+        Ok(Surface {
+            evaluator: Evaluator::sharing(net, table)?,
+            net: net.clone(),
+            mode: SurfaceMode::Approximating,
+            displacement: Vec::new(),
+            derived: Default::default(),
+            model: std::sync::OnceLock::new(),
+        })
+    }
+
     /// Builds the surface of `net` in `mode`, taking `net` as it is (for
     /// `Solve`, the already solved net).
     pub(crate) fn from_net(net: ControlNet, mode: SurfaceMode) -> Result<Surface> {
@@ -712,6 +730,55 @@ mod tests {
             );
             assert!(!s.curvature(t, pv, pw).unwrap().reliable);
         }
+    }
+}
+
+#[cfg(test)]
+mod sharing_tests {
+    use super::*;
+
+    /// A sub-net's surface sharing the whole's configurations evaluates
+    /// bit for bit as one with a table of its own, near and at special
+    /// vertices and on creases, and adds what it builds to the shared
+    /// table.
+    #[test]
+    fn shared_configurations_evaluate_as_own_ones() {
+        let ex = crate::examples::viking();
+        let mut net = ControlNet::from_arrays(ex.points, &ex.tris).unwrap();
+        net.tag_by_angle(30.0).unwrap();
+        net.tag_vertex(5).unwrap();
+        let whole = Surface::new(&net).unwrap();
+        let half: Vec<u32> = (0..net.triangles().len() as u32 / 2).collect();
+        let part = crate::partition::Part::new(&net, &half).unwrap();
+        let own = Surface::new(part.net()).unwrap();
+        let shared = Surface::sharing_configurations(part.net(), &whole).unwrap();
+        let mut params = vec![(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.25, 0.5)];
+        for k in 1..=8 {
+            let f = 0.5f64.powi(3 * k);
+            params.extend([(f, 0.0), (f, f), (1.0 - f, 0.0), (0.0, 1.0 - 2.0 * f)]);
+        }
+        for t in 0..part.net().triangles().len() {
+            for &(v, w) in &params {
+                let (a, b) = (own.eval(t, v, w), shared.eval(t, v, w));
+                match (a, b) {
+                    (Ok(a), Ok(b)) => {
+                        let bits = |e: &Evaluation| {
+                            [e.x, e.xv, e.xw, e.xvv, e.xvw, e.xww]
+                                .map(|d| d.to_array().map(f64::to_bits))
+                        };
+                        assert_eq!(bits(&a), bits(&b), "{t} {v} {w}");
+                    }
+                    (a, b) => assert_eq!(a.is_ok(), b.is_ok(), "{t} {v} {w}"),
+                }
+            }
+        }
+        let built = own.evaluator().configurations();
+        assert!(built >= 3, "{built} configurations");
+        assert_eq!(
+            shared.evaluator().configurations(),
+            whole.evaluator().configurations()
+        );
+        assert!(whole.evaluator().configurations() >= built);
     }
 }
 

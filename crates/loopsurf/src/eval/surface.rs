@@ -14,7 +14,7 @@
 
 use super::affine::Affine;
 use super::affine::{child_containing, rotation};
-use super::configurations::{Configurations, CornerScratch};
+use super::configurations::{ConfigurationTable, Configurations, CornerScratch};
 use super::special::{neighbourhood_into, Cell, SpecialPatch};
 use super::{box_spline, regular};
 use crate::features::{Features, VertexKind};
@@ -186,8 +186,18 @@ struct Maker {
 
 impl Evaluator {
     pub fn new(net: &ControlNet) -> crate::Result<Evaluator> {
+        Self::sharing(net, Arc::default())
+    }
+
+    /// The evaluator of `net`, keeping its special-corner configurations in
+    /// `table` (which other evaluators may share: a configuration depends
+    /// only on the pattern around its corner).
+    pub(crate) fn sharing(
+        net: &ControlNet,
+        table: Arc<ConfigurationTable>,
+    ) -> crate::Result<Evaluator> {
         let points = crate::refine::refine_points_once(net)?;
-        let configurations = Configurations::new(points.len());
+        let configurations = Configurations::new(points.len(), table);
         let n = net.triangles().len();
         Ok(Evaluator {
             points,
@@ -199,6 +209,11 @@ impl Evaluator {
             unmade: AtomicUsize::new(n.div_ceil(BLOCK)),
             configurations,
         })
+    }
+
+    /// The table this evaluator keeps its configurations in.
+    pub(crate) fn configuration_table(&self) -> &Arc<ConfigurationTable> {
+        self.configurations.table()
     }
 
     /// The maker, built by the first caller (the others wait for it:

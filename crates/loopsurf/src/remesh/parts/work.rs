@@ -83,7 +83,7 @@ impl PartWork {
             .iter()
             .map(|&g| faces[g as usize])
             .collect();
-        let surface = Surface::new(part.net())?;
+        let surface = Surface::sharing_configurations(part.net(), remesher.surface)?;
         let (sizing, tolerance, budget) = remesher.sizing_on(&surface)?;
         let shrunk = part
             .global_triangles()
