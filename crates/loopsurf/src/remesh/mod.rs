@@ -265,8 +265,20 @@ impl<'a> Remesher<'a> {
     /// tolerance and the default cap are relative to the whole surface's
     /// diagonal.
     fn sizing_on(&self, surface: &Surface) -> Result<(Sizing, Option<f64>, Budget)> {
-        let (tolerance, budget) = self.settings()?;
-        let sizing = match (self.size, tolerance) {
+        let settled = self.settled()?;
+        Ok((
+            self.sizing_with(surface, &settled),
+            settled.tolerance,
+            settled.budget,
+        ))
+    }
+
+    /// The size field over `surface` at `settled` settings: for the many
+    /// surfaces of a run in parts, which would otherwise measure the whole
+    /// net (its diagonal and area) again for each part, band piece and
+    /// blob (on bunny00 refined twice, thousands of touch-up blobs).
+    fn sizing_with(&self, surface: &Surface, settled: &Settled) -> Sizing {
+        match (self.size, settled.tolerance) {
             (Some(h), None) => Sizing::Uniform(h * UNIFORM_AIM),
             // A size with a tolerance sizes by curvature under the size.
             // Shrinking a uniform size only where probes missed did not
@@ -274,12 +286,11 @@ impl<'a> Remesher<'a> {
             // rounds at the full size left edges spanning features, whose
             // splits the alignment check refused.
             (_, Some(tol)) => {
-                let cap = self.adapt_cap();
+                let cap = settled.cap;
                 Sizing::curvature(surface, tol, cap, cap * SMALLEST_ADAPTED, self.gradation)
             }
             (None, None) => unreachable!("settings asks for a density"),
-        };
-        Ok((sizing, tolerance, budget))
+        }
     }
 
     /// The smallest edge length these settings ask for anywhere: the
@@ -300,6 +311,17 @@ impl<'a> Remesher<'a> {
     fn adapt_cap(&self) -> f64 {
         self.size
             .unwrap_or(DEFAULT_ADAPT_CAP * self.surface.net().bbox_diagonal())
+    }
+
+    /// [`Remesher::settings`], and the largest size where sizes follow
+    /// curvature ([`Remesher::adapt_cap`]).
+    fn settled(&self) -> Result<Settled> {
+        let (tolerance, budget) = self.settings()?;
+        Ok(Settled {
+            tolerance,
+            budget,
+            cap: self.adapt_cap(),
+        })
     }
 
     /// The settings checked: the chord tolerance in model units (relative
@@ -369,6 +391,16 @@ impl<'a> Remesher<'a> {
     pub fn parts_job(&self) -> Result<PartsJob<'a>> {
         PartsJob::new(self.clone(), self.parts)
     }
+}
+
+/// A remesher's settings in model units, measured on the whole net once.
+#[derive(Debug, Clone, Copy)]
+struct Settled {
+    /// The chord tolerance; none for a uniform size.
+    tolerance: Option<f64>,
+    budget: Budget,
+    /// The largest size where sizes follow curvature.
+    cap: f64,
 }
 
 /// Remeshes `work`: rounds of the passes (the first shaken if `shake`)

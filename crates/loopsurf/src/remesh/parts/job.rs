@@ -25,7 +25,7 @@ use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
 use crate::partition;
 use crate::remesh::budget::expected_over;
-use crate::remesh::Remesher;
+use crate::remesh::{Remesher, Settled};
 use crate::topology::NONE;
 use rayon::prelude::*;
 
@@ -35,6 +35,8 @@ use rayon::prelude::*;
 /// in task order, to [`PartsJob::advance`].
 pub struct PartsJob<'a> {
     remesher: Remesher<'a>,
+    /// The remesher's settings, measured on the whole net once.
+    settled: Settled,
     k: usize,
     /// Per control triangle: its part in the first partition, which also
     /// says which rank holds which triangle of the final mesh.
@@ -104,10 +106,11 @@ impl<'a> PartsJob<'a> {
                 "0 parts: remesh in at least 1".into(),
             ));
         }
-        remesher.settings()?;
+        let settled = remesher.settled()?;
         let first = partition::partition(remesher.surface.net(), k)?;
         Ok(PartsJob {
             remesher,
+            settled,
             k,
             first_parts: first.parts().to_vec(),
             stage: Stage::Sizes,
@@ -228,6 +231,7 @@ impl<'a> PartsJob<'a> {
                 let p = b.parts[i];
                 let work = PartWork::new(
                     remesher,
+                    &self.settled,
                     &b.cover[p as usize],
                     LATER_RINGS,
                     &b.control_owner,
@@ -264,6 +268,7 @@ impl<'a> PartsJob<'a> {
             .collect();
         PartWork::new(
             &self.remesher,
+            &self.settled,
             &cover,
             FIRST_RINGS,
             &self.first_parts,
@@ -374,7 +379,7 @@ impl<'a> PartsJob<'a> {
             }
         }
         let net = self.remesher.surface.net();
-        let (_, budget) = self.remesher.settings()?;
+        let budget = self.settled.budget;
         let uniform = vec![largest; net.triangles().len()];
         let mut sizes = uniform.clone();
         for &(t, h) in &per_triangle {

@@ -8,7 +8,7 @@ use super::super::remeshing::Remeshing;
 use super::super::sizing::Sizing;
 use super::super::tolerance::chord_errors;
 use super::super::vertices::Placer;
-use super::super::{remesh, start, Remesher};
+use super::super::{remesh, start, Remesher, Settled};
 use super::cuts::{control_rings, fans};
 use super::plan::{Pins, StartPlan};
 use crate::error::{Error, Result};
@@ -56,10 +56,12 @@ pub(super) struct Piece {
 impl PartWork {
     /// A part covering the control triangles `cover` and those within
     /// `rings` vertex rings of them as a sub-net (its vertices land only
-    /// there), its surface and its sizes, shrunk by `shrunk` per global
-    /// triangle (if given); it owns the triangles t with `parts[t] == p`.
+    /// there), its surface and its sizes at `settled` settings, shrunk by
+    /// `shrunk` per global triangle (if given); it owns the triangles t
+    /// with `parts[t] == p`.
     pub(super) fn new(
         remesher: &Remesher,
+        settled: &Settled,
         cover: &[u32],
         rings: usize,
         parts: &[u32],
@@ -84,7 +86,8 @@ impl PartWork {
             .map(|&g| faces[g as usize])
             .collect();
         let surface = Surface::sharing_configurations(part.net(), remesher.surface)?;
-        let (sizing, tolerance, budget) = remesher.sizing_on(&surface)?;
+        let sizing = remesher.sizing_with(&surface, settled);
+        let (tolerance, budget) = (settled.tolerance, settled.budget);
         let shrunk = part
             .global_triangles()
             .iter()
