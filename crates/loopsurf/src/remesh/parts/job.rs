@@ -314,7 +314,7 @@ impl<'a> PartsJob<'a> {
             Stage::First(f) => {
                 // Dropped side by side: a part's surface is many small blocks.
                 self.works.par_iter_mut().for_each(|w| *w = None);
-                drop(f);
+                drop(f); // the plan and pins, before the join holds the mesh
                 let joined = join_pieces(&self.remesher, Vec::new(), outcomes)?;
                 Stage::Band(Box::new(self.band_pass(joined)?))
             }
@@ -385,7 +385,7 @@ impl<'a> PartsJob<'a> {
         for &(t, h) in &per_triangle {
             let slot = sizes.get_mut(t as usize).ok_or_else(|| {
                 Error::InvalidArgument(format!(
-                    "a part's size for control triangle {t} of {}",
+                    "a part's sizes name control triangle {t}, but the net has {}",
                     net.triangles().len()
                 ))
             })?;
@@ -401,7 +401,7 @@ impl<'a> PartsJob<'a> {
             )
         };
         let (plan, pins) = match plan(&sizes) {
-            Err(_) if !per_triangle.is_empty() => plan(&uniform),
+            Err(Error::OverBudget { .. }) if !per_triangle.is_empty() => plan(&uniform),
             planned => planned,
         }
         .map_err(|e| e.during(budget.start_context()))?;
