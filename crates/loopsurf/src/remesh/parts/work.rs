@@ -1,5 +1,6 @@
 //! One part's work: its sub-net, surface and sizes, its piece of a start
-//! cut out in local terms, remeshed with its pinned vertices, and the
+//! (its own chart mesh in the first pass, cut from the joined mesh in the
+//! later ones) in local terms, remeshed with its pinned vertices, and the
 //! workers that remesh the pieces side by side.
 
 use super::super::budget::Budget;
