@@ -276,7 +276,8 @@ impl<'a> Remesher<'a> {
     /// The size field over `surface` at `settled` settings: for the many
     /// surfaces of a run in parts, which would otherwise measure the whole
     /// net (its diagonal and area) again for each part, band piece and
-    /// blob (on bunny00 refined twice, thousands of touch-up blobs).
+    /// blob (on bunny00 refined twice in 8 parts on 2 ranks, the touch-up's
+    /// tasks took 8.9 s before, 1.0 s after).
     fn sizing_with(&self, surface: &Surface, settled: &Settled) -> Sizing {
         match (self.size, settled.tolerance) {
             (Some(h), None) => Sizing::Uniform(h * UNIFORM_AIM),
