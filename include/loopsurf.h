@@ -1035,9 +1035,12 @@ int ls_remesh_job_run(ls_remesh_job *job, const uint8_t **bytes, size_t *n);
 // of the stage's own work (a join, a partition) leaves the job failed.
 int ls_remesh_job_advance(ls_remesh_job *job, const uint8_t *all, const size_t *counts);
 
-// The finished mesh, whole (every rank holds it), as `ls_remesh` hands
-// it over: a new `ls_trimesh` in `*mesh`, released with
-// `ls_trimesh_free`. Before the job is done: `LS_ERR_INVALID_ARGUMENT`.
+// The finished mesh, whole, as `ls_remesh` hands it over: a new
+// `ls_trimesh` in `*mesh`, released with `ls_trimesh_free`. Only a job
+// that ran every task holds it (one rank of one): on a rank of several,
+// which holds its own piece and the band along the interfaces,
+// `LS_ERR_INVALID_ARGUMENT` (take `ls_remesh_job_piece`); so too before
+// the job is done.
 int ls_remesh_job_mesh(const ls_remesh_job *job, ls_trimesh **mesh);
 
 // This rank's piece of the finished mesh: the triangles of the parts it
@@ -1045,7 +1048,8 @@ int ls_remesh_job_mesh(const ls_remesh_job *job, ls_trimesh **mesh);
 // one rank's piece), as a new `ls_trimesh` in `*piece` with its nodes
 // numbered 0 to n − 1, and in `*global_ids` a new array of n node ids
 // in the whole mesh (`ls_free_array`): a node on the border between two
-// pieces has the same id in both.
+// pieces has the same id in both. Before the job is done:
+// `LS_ERR_INVALID_ARGUMENT`.
 int ls_remesh_job_piece(const ls_remesh_job *job, ls_trimesh **piece, int64_t **global_ids);
 
 // Releases a job; NULL is ignored.

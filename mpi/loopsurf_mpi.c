@@ -1,8 +1,10 @@
 /* loopsurf-mpi: `loopsurf mesh` on the ranks of an MPI job. Every rank
  * runs it with the same arguments; each reads the control net, the ranks
  * share out the remeshing in parts (ls_remesh_job: each stage, every rank
- * meshes its share of the parts and MPI_Allgatherv hands the pieces to
- * all), and each writes its piece of the mesh with the global node ids
+ * meshes its share of the parts and MPI_Allgatherv hands what the next
+ * stage needs to all: the first pass's pieces near the interfaces, whose
+ * interiors stay with the rank that made them, then the remeshed pieces
+ * of that band), and each writes its piece of the mesh with the global node ids
  * (ls_trimesh_write): for -o OUT.pvtu, rank q writes OUT_q.vtu and rank 0
  * the .pvtu that names them; for -o OUT.msh, rank q writes OUT_q.msh
  * (gmsh 4.1), its nodes tagged global id + 1 and its elements tagged from

@@ -680,6 +680,28 @@ static void test_mesh(void) {
  * edge; bad arguments fail cleanly with the outputs untouched. */
 static int compare_i64(const void* a, const void* b) { return compare_edges(a, b); }
 
+static int compare_triples(const void* a, const void* b) {
+    const int64_t *x = a, *y = b;
+    for (int k = 0; k < 3; k++)
+        if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
+    return 0;
+}
+
+/* n triangles, each rotated to start at its lowest node (its orientation
+ * kept), then sorted: two lists of the same triangles become equal. */
+static void canonical_triangles(int64_t* tris, size_t n) {
+    for (size_t e = 0; e < n; e++) {
+        int64_t* t = &tris[3 * e];
+        while (t[0] > t[1] || t[0] > t[2]) {
+            int64_t first = t[0];
+            t[0] = t[1];
+            t[1] = t[2];
+            t[2] = first;
+        }
+    }
+    qsort(tris, n, 3 * sizeof *tris, compare_triples);
+}
+
 static int64_t edge_key(int32_t a, int32_t b) {
     return a < b ? (int64_t)a << 32 | (uint32_t)b : (int64_t)b << 32 | (uint32_t)a;
 }
@@ -1211,30 +1233,44 @@ static void test_remesh_job(void) {
     size_t nmore = 0;
     EXPECT(ls_remesh_job_run(jobs[0], &more, &nmore), LS_ERR_INVALID_ARGUMENT);
 
+    /* No rank of two holds the whole mesh: each holds its piece. */
     for (int r = 0; r < 2; r++) {
-        EXPECT(ls_remesh_job_mesh(jobs[r], &mesh), LS_OK);
-        mesh_view m = view(mesh);
-        CHECK(m.nv == t.nv && m.nt == t.nt);
-        CHECK(memcmp(m.tris, t.tris, 3 * t.nt * sizeof *t.tris) == 0);
-        CHECK(memcmp(m.xyz, t.xyz, 3 * t.nv * sizeof *t.xyz) == 0);
-        ls_trimesh_free(mesh);
+        EXPECT(ls_remesh_job_mesh(jobs[r], &mesh), LS_ERR_INVALID_ARGUMENT);
+        CHECK(strstr(ls_last_error(), "this rank's piece") != NULL);
+        CHECK(mesh == (ls_trimesh*)&SENTINEL);
     }
+    /* The pieces on their global ids are the threaded mesh: each node
+       where its id says, each triangle (as global ids, rotated to start
+       at its lowest) in one piece. */
     size_t held = 0;
     int ids_ok = 1;
+    int64_t* pieces_tris = malloc(3 * t.nt * sizeof *pieces_tris);
+    int64_t* whole_tris = malloc(3 * t.nt * sizeof *whole_tris);
     for (int r = 0; r < 2; r++) {
         ls_trimesh* piece = NULL;
         int64_t* ids = NULL;
         EXPECT(ls_remesh_job_piece(jobs[r], &piece, &ids), LS_OK);
         if (!piece) continue;
         mesh_view p = view(piece);
-        held += p.nt;
         for (size_t i = 0; i < p.nv; i++)
             ids_ok &= ids[i] >= 0 && (size_t)ids[i] < t.nv &&
                       memcmp(&p.xyz[3 * i], &t.xyz[3 * ids[i]], 3 * sizeof(double)) == 0;
+        for (size_t e = 0; e < p.nt; e++, held++)
+            if (held < t.nt)
+                for (int k = 0; k < 3; k++) pieces_tris[3 * held + k] = ids[p.tris[3 * e + k]];
         ls_free_array(ids);
         ls_trimesh_free(piece);
     }
     CHECK(held == t.nt && ids_ok);
+    if (held == t.nt) {
+        for (size_t e = 0; e < t.nt; e++)
+            for (int k = 0; k < 3; k++) whole_tris[3 * e + k] = t.tris[3 * e + k];
+        canonical_triangles(pieces_tris, t.nt);
+        canonical_triangles(whole_tris, t.nt);
+        CHECK(memcmp(pieces_tris, whole_tris, 3 * t.nt * sizeof *whole_tris) == 0);
+    }
+    free(pieces_tris);
+    free(whole_tris);
     ls_remesh_job_free(jobs[0]);
     ls_remesh_job_free(jobs[1]);
     ls_remesh_job_free(NULL);

@@ -13,7 +13,7 @@ use crate::status::{LS_ERR_BAD_STREAM, LS_ERR_INVALID_ARGUMENT};
 use crate::surface::ls_surface;
 use crate::trimesh::ls_trimesh;
 use loopsurf::remesh::{outcomes_from_bytes, outcomes_to_bytes, TaskOutcome};
-use loopsurf::{Surface, SurfaceMesh};
+use loopsurf::Surface;
 use std::ffi::{c_char, c_int};
 
 /// Starts remeshing `surface` in `options->parts` parts as rank `rank` of
@@ -225,9 +225,12 @@ pub unsafe extern "C" fn ls_remesh_job_advance(
     })
 }
 
-/// The finished mesh, whole (every rank holds it), as `ls_remesh` hands
-/// it over: a new `ls_trimesh` in `*mesh`, released with
-/// `ls_trimesh_free`. Before the job is done: `LS_ERR_INVALID_ARGUMENT`.
+/// The finished mesh, whole, as `ls_remesh` hands it over: a new
+/// `ls_trimesh` in `*mesh`, released with `ls_trimesh_free`. Only a job
+/// that ran every task holds it (one rank of one): on a rank of several,
+/// which holds its own piece and the band along the interfaces,
+/// `LS_ERR_INVALID_ARGUMENT` (take `ls_remesh_job_piece`); so too before
+/// the job is done.
 #[no_mangle]
 pub unsafe extern "C" fn ls_remesh_job_mesh(
     job: *const ls_remesh_job,
@@ -236,8 +239,8 @@ pub unsafe extern "C" fn ls_remesh_job_mesh(
     run("ls_remesh_job_mesh", || {
         let job = &input(job, "job")?.job;
         let out = output(mesh, "mesh")?;
-        let made = finished(job.mesh(), job.stage_name())?;
-        trimesh_of(made)?.hand_over(out);
+        let made = job.mesh()?;
+        trimesh_of(&made)?.hand_over(out);
         Ok(())
     })
 }
@@ -247,7 +250,8 @@ pub unsafe extern "C" fn ls_remesh_job_mesh(
 /// one rank's piece), as a new `ls_trimesh` in `*piece` with its nodes
 /// numbered 0 to n − 1, and in `*global_ids` a new array of n node ids
 /// in the whole mesh (`ls_free_array`): a node on the border between two
-/// pieces has the same id in both.
+/// pieces has the same id in both. Before the job is done:
+/// `LS_ERR_INVALID_ARGUMENT`.
 #[no_mangle]
 pub unsafe extern "C" fn ls_remesh_job_piece(
     job: *const ls_remesh_job,
@@ -258,7 +262,6 @@ pub unsafe extern "C" fn ls_remesh_job_piece(
         let handle = input(job, "job")?;
         let job = &handle.job;
         let outs = (output(piece, "piece")?, output(global_ids, "global_ids")?);
-        finished(job.mesh(), job.stage_name())?;
         let (made, ids) = job.rank_piece(handle.rank, handle.ranks)?;
         let result = trimesh_of(&made)?;
         let ids: Vec<i64> = ids.into_iter().map(i64::from).collect();
@@ -266,16 +269,6 @@ pub unsafe extern "C" fn ls_remesh_job_piece(
         *outs.1 = ids;
         result.hand_over(outs.0);
         Ok(())
-    })
-}
-
-/// The finished mesh, or the error that says the job is not done.
-fn finished<'m>(mesh: Option<&'m SurfaceMesh>, stage: &str) -> Result<&'m SurfaceMesh, Fail> {
-    mesh.ok_or_else(|| {
-        Fail::new(
-            LS_ERR_INVALID_ARGUMENT,
-            format!("the mesh is not made yet: the job is at its {stage} stage"),
-        )
     })
 }
 

@@ -13,13 +13,14 @@
 //! mesh is the threaded one, bit for bit, on any number of ranks.
 
 use super::cuts::{blobs, control_rings, majority, mesh_rings, pieces_meeting};
-use super::join::{join, kept, sub_mesh, Joined};
+use super::interior::{assemble, split, Interior, Numbering};
+use super::join::{join, kept, Joined};
 use super::outcome::{Outcome, TaskOutcome};
 use super::plan::{Pins, StartPlan};
 use super::work::{run_tasks, PartWork};
 use super::{
-    AVOID_RINGS, BAND_RINGS, CROSSING_RINGS, FIRST_RINGS, LATER_RINGS, TOUCH_UP_BELOW,
-    TOUCH_UP_RINGS,
+    AVOID_RINGS, BAND_RINGS, CROSSING_RINGS, FIRST_RINGS, LATER_RINGS, SHARED_RINGS,
+    TOUCH_UP_BELOW, TOUCH_UP_RINGS,
 };
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
@@ -45,6 +46,17 @@ pub struct PartsJob<'a> {
     /// The parts' works this process built in the sizes stage, kept for
     /// its first pass.
     works: Vec<Option<PartWork>>,
+    /// Per part: what its first-pass task weighed, which deals the parts'
+    /// tasks, and so their interiors and their triangles of the finished
+    /// mesh, to the ranks.
+    first_weights: Vec<usize>,
+    /// Per part: the interior of its first-pass piece, where this process
+    /// made it.
+    interiors: Vec<Option<Interior>>,
+    /// Per part: how many vertices its interior holds off its rim, and
+    /// on it (from the first pass on), which number the finished mesh.
+    inner: Vec<usize>,
+    rims: Vec<usize>,
 }
 
 enum Stage {
@@ -62,7 +74,9 @@ enum Stage {
     /// Around the triangles still below [`TOUCH_UP_BELOW`], each connected
     /// blob touched up uncut (flips and guarded relaxation only).
     TouchUp(Box<BandPass>),
-    Done(SurfaceMesh),
+    /// The band's mesh as the last pass left it; the finished mesh is it
+    /// and the interiors.
+    Done(Box<Joined>),
     /// A stage failed to advance: what went wrong.
     Failed(String),
 }
@@ -115,6 +129,10 @@ impl<'a> PartsJob<'a> {
             first_parts: first.parts().to_vec(),
             stage: Stage::Sizes,
             works: (0..k).map(|_| None).collect(),
+            first_weights: Vec::new(),
+            interiors: (0..k).map(|_| None).collect(),
+            inner: Vec::new(),
+            rims: Vec::new(),
         })
     }
 
@@ -219,13 +237,15 @@ impl<'a> PartsJob<'a> {
                     }
                 };
                 let net = remesher.surface.net();
-                Outcome::Piece(Box::new(work.remesh_first(
-                    net,
-                    &f.plan,
-                    &f.pins,
-                    remesher.sliver_cuts,
-                    i as u32,
-                )?))
+                let piece =
+                    work.remesh_first(net, &f.plan, &f.pins, remesher.sliver_cuts, i as u32)?;
+                let (band, rim, interior) = split(piece, SHARED_RINGS);
+                Outcome::Band {
+                    band: Box::new(band),
+                    rim,
+                    inner: interior.inner(),
+                    interior: Some(Box::new(interior)),
+                }
             }
             Stage::Band(b) | Stage::Crossings(b) | Stage::TouchUp(b) => {
                 let p = b.parts[i];
@@ -314,13 +334,13 @@ impl<'a> PartsJob<'a> {
             Stage::First(f) => {
                 // Dropped side by side: a part's surface is many small blocks.
                 self.works.par_iter_mut().for_each(|w| *w = None);
-                drop(f); // the plan and pins, before the join holds the mesh
-                let joined = join_pieces(&self.remesher, Vec::new(), outcomes)?;
+                let shared = f.pins.id.len();
+                drop(f); // the plan and pins, before the join holds the band
+                let joined = self.join_bands(shared, outcomes)?;
                 Stage::Band(Box::new(self.band_pass(joined)?))
             }
             Stage::Band(b) => {
-                let keep = kept(&b.pass, &b.owner);
-                let moved = join_pieces(&self.remesher, vec![keep], outcomes)?;
+                let moved = self.rejoin(&b, outcomes)?;
                 // The first interface's vertices the second cut pinned
                 // again, and the corners where three pieces met (the second
                 // cut at the band's rim, or three parts): their triangles
@@ -341,14 +361,8 @@ impl<'a> PartsJob<'a> {
                     self.touch_up_or_done(moved)
                 }
             }
-            Stage::Crossings(b) => {
-                let keep = kept(&b.pass, &b.owner);
-                self.touch_up_or_done(join_pieces(&self.remesher, vec![keep], outcomes)?)
-            }
-            Stage::TouchUp(b) => {
-                let keep = kept(&b.pass, &b.owner);
-                Stage::Done(join_pieces(&self.remesher, vec![keep], outcomes)?.mesh)
-            }
+            Stage::Crossings(b) => self.touch_up_or_done(self.rejoin(&b, outcomes)?),
+            Stage::TouchUp(b) => Stage::Done(Box::new(self.rejoin(&b, outcomes)?)),
             done @ (Stage::Done(_) | Stage::Failed(_)) => done,
         })
     }
@@ -375,7 +389,7 @@ impl<'a> PartsJob<'a> {
                     per_triangle.extend(sizes);
                     self.works[p] = work.map(|w| *w);
                 }
-                Outcome::Piece(_) => return Err(wrong_outcome("sizes")),
+                _ => return Err(wrong_outcome("sizes")),
             }
         }
         let net = self.remesher.surface.net();
@@ -405,6 +419,7 @@ impl<'a> PartsJob<'a> {
             planned => planned,
         }
         .map_err(|e| e.during(budget.start_context()))?;
+        self.first_weights = weights.clone();
         Ok(FirstPass {
             plan,
             pins,
@@ -418,7 +433,9 @@ impl<'a> PartsJob<'a> {
     fn band_pass(&self, pass: Joined) -> Result<BandPass> {
         let net = self.remesher.surface.net();
         let mesh = &pass.mesh;
-        let old: Vec<bool> = pass.from.iter().map(|&g| g != NONE).collect();
+        let old: Vec<bool> = (pass.from.iter().zip(&pass.rim))
+            .map(|(&g, &r)| g != NONE && r == NONE)
+            .collect();
         let old_tris = mesh
             .params
             .iter()
@@ -427,7 +444,7 @@ impl<'a> PartsJob<'a> {
             .map(|x| x.0.tri);
         let avoid = control_rings(net, old_tris, AVOID_RINGS);
         let second = partition::partition_avoiding(net, self.k, &avoid)?;
-        let band = mesh_rings(&mesh.triangles, &old, BAND_RINGS);
+        let band = within(&pass, &old, BAND_RINGS);
         let owner: Vec<u32> = mesh
             .triangles
             .iter()
@@ -464,7 +481,7 @@ impl<'a> PartsJob<'a> {
         if seeds.contains(&true) {
             Stage::TouchUp(Box::new(self.blob_pass(pass, &seeds, TOUCH_UP_RINGS)))
         } else {
-            Stage::Done(pass.mesh)
+            Stage::Done(Box::new(pass))
         }
     }
 
@@ -473,70 +490,159 @@ impl<'a> PartsJob<'a> {
     /// crossings: first-interface vertices the second cut pinned again,
     /// and corners where three pieces met).
     fn blob_pass(&self, moved: Joined, seeds: &[bool], rings: usize) -> BandPass {
-        let mesh = &moved.mesh;
-        let band = mesh_rings(&mesh.triangles, seeds, rings);
-        let (owner, count) = blobs(&mesh.triangles, &band);
+        let band = within(&moved, seeds, rings);
+        let (owner, count) = blobs(&moved.mesh.triangles, &band);
         let nobody = vec![NONE; self.first_parts.len()];
         BandPass::new(moved, &band, owner, count, nobody, Vec::new())
     }
 
-    /// The mesh, once the job is done.
-    pub fn mesh(&self) -> Option<&SurfaceMesh> {
-        match &self.stage {
-            Stage::Done(mesh) => Some(mesh),
-            _ => None,
+    /// The band's first pass from the first pass's outcomes: each part's
+    /// band with its rim vertices pinned to ids past the `shared` ids of
+    /// the plan, joined; the interiors this process made kept, and where
+    /// the finished mesh's vertices go.
+    fn join_bands(&mut self, shared: usize, outcomes: Vec<TaskOutcome>) -> Result<Joined> {
+        let mut bands = Vec::with_capacity(outcomes.len());
+        let (mut inner, mut rims) = (Vec::new(), Vec::new());
+        let mut next = shared as u32;
+        for (p, outcome) in outcomes.into_iter().enumerate() {
+            let Outcome::Band {
+                mut band,
+                rim,
+                inner: n,
+                interior,
+            } = outcome.0
+            else {
+                return Err(wrong_outcome("the first pass's"));
+            };
+            for &v in &rim {
+                band.pinned[v as usize] = next;
+                next += 1;
+            }
+            inner.push(n);
+            rims.push(rim.len());
+            self.interiors[p] = interior.map(|i| *i);
+            bands.push(*band);
         }
+        let mut joined = join(self.remesher.surface, &bands)?;
+        joined.rim = (joined.from.iter())
+            .map(|&g| match g {
+                NONE => NONE,
+                g if g as usize >= shared => g - shared as u32,
+                _ => NONE,
+            })
+            .collect();
+        self.inner = inner;
+        self.rims = rims;
+        Ok(joined)
     }
 
-    /// The mesh, once the job is done; an error before.
+    /// The mesh of the pass `b` with its parts' remeshed pieces
+    /// `outcomes` in place, the rim carried over.
+    fn rejoin(&self, b: &BandPass, outcomes: Vec<TaskOutcome>) -> Result<Joined> {
+        let mut pieces = vec![kept(&b.pass, &b.owner)];
+        for outcome in outcomes {
+            match outcome.0 {
+                Outcome::Piece(piece) => pieces.push(*piece),
+                _ => return Err(wrong_outcome("a remeshing")),
+            }
+        }
+        let mut joined = join(self.remesher.surface, &pieces)?;
+        // Every rim vertex is pinned, so it comes from b's mesh.
+        joined.rim = (joined.from.iter())
+            .map(|&g| {
+                if g == NONE {
+                    NONE
+                } else {
+                    b.pass.rim[g as usize]
+                }
+            })
+            .collect();
+        Ok(joined)
+    }
+
+    /// The mesh, whole, once the job is done; an error before, or on a
+    /// rank that did not make every part's interior (its piece is
+    /// [`PartsJob::rank_piece`]).
+    pub fn mesh(&self) -> Result<SurfaceMesh> {
+        let band = self.band()?;
+        let interiors = (self.interiors.iter().enumerate())
+            .map(|(p, i)| {
+                i.as_ref().map(|i| (p, i)).ok_or_else(|| {
+                    Error::InvalidArgument(format!(
+                        "the whole mesh is not on this process: part {p}'s interior \
+                         was made on another rank (take this rank's piece)"
+                    ))
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let all = 0..band.mesh.triangles.len();
+        let (mut mesh, _) = assemble(&band.mesh, all, &interiors, &self.numbering(band))?;
+        let curves =
+            crate::mesh::curve_edges(self.remesher.surface, &mesh.params, &mesh.triangles)?;
+        mesh.hard_edges = curves.pairs;
+        mesh.hard_edge_curves = curves.curves;
+        Ok(mesh)
+    }
+
+    /// The mesh, whole, once the job is done ([`PartsJob::mesh`]).
     pub fn into_mesh(self) -> Result<SurfaceMesh> {
-        match self.stage {
-            Stage::Done(mesh) => Ok(mesh),
+        self.mesh()
+    }
+
+    /// Rank `rank`'s piece of the finished mesh as a mesh of its own (no
+    /// curves), and each of its vertices' index in the whole mesh: a
+    /// vertex on the border between two pieces has one index. The rank
+    /// holds the parts whose first-pass tasks it ran (their interiors, and
+    /// the band's triangles most of whose vertices lie on their control
+    /// triangles); every triangle is in one rank's piece.
+    pub fn rank_piece(&self, rank: usize, ranks: usize) -> Result<(SurfaceMesh, Vec<u32>)> {
+        let band = self.band()?;
+        let rank_of = deal(&self.first_weights, ranks);
+        let mut interiors = Vec::new();
+        for p in (0..self.k).filter(|&p| rank_of[p] == rank) {
+            let interior = self.interiors[p].as_ref().ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "rank {rank} of {ranks} holds part {p}, but did not make its interior: \
+                     the ranks' tasks were not dealt as this job deals them"
+                ))
+            })?;
+            interiors.push((p, interior));
+        }
+        let mesh = &band.mesh;
+        let mine = (0..mesh.triangles.len()).filter(|&t| {
+            let tri = mesh.triangles[t];
+            let part =
+                majority(tri.map(|v| self.first_parts[mesh.params[v as usize].tri as usize]));
+            rank_of[part as usize] == rank
+        });
+        assemble(mesh, mine, &interiors, &self.numbering(band))
+    }
+
+    /// Where the finished mesh's vertices go, `band` the last pass's.
+    fn numbering(&self, band: &Joined) -> Numbering {
+        Numbering::new(band.mesh.points.len(), &band.rim, &self.inner, &self.rims)
+    }
+
+    /// The band once the job is done; an error before.
+    fn band(&self) -> Result<&Joined> {
+        match &self.stage {
+            Stage::Done(band) => Ok(band),
             _ => Err(Error::InvalidArgument(format!(
                 "the mesh is not made yet: the job is at its {} stage",
                 self.stage_name()
             ))),
         }
     }
+}
 
-    /// Rank `rank`'s piece of the finished mesh ([`PartsJob::rank_triangles`])
-    /// as a mesh of its own, and each of its vertices' index in the whole
-    /// mesh: a vertex on the border between two pieces has one index.
-    pub fn rank_piece(&self, rank: usize, ranks: usize) -> Result<(SurfaceMesh, Vec<u32>)> {
-        let mine = self.rank_triangles(rank, ranks)?;
-        let mesh = self
-            .mesh()
-            .expect("rank_triangles checked that the job is done");
-        Ok(sub_mesh(mesh, mine.iter().map(|&t| t as usize)))
+/// The vertices of `pass` within `rings` edges of those `seeds` marks,
+/// but its rim: the border the later passes keep.
+fn within(pass: &Joined, seeds: &[bool], rings: usize) -> Vec<bool> {
+    let mut near = mesh_rings(&pass.mesh.triangles, seeds, rings);
+    for (n, &r) in near.iter_mut().zip(&pass.rim) {
+        *n &= r == NONE;
     }
-
-    /// The triangles of the finished mesh that rank `rank` of `ranks`
-    /// holds: those in the parts it meshed in the first pass (a triangle's
-    /// part is the one most of its vertices' control triangles are in).
-    pub fn rank_triangles(&self, rank: usize, ranks: usize) -> Result<Vec<u32>> {
-        let Stage::Done(mesh) = &self.stage else {
-            return Err(Error::InvalidArgument(format!(
-                "no triangles to hand out yet: the job is at its {} stage",
-                self.stage_name()
-            )));
-        };
-        let per_part = {
-            let mut count = vec![0usize; self.k];
-            for &p in &self.first_parts {
-                count[p as usize] += 1;
-            }
-            count
-        };
-        let rank_of = deal(&per_part, ranks);
-        Ok((0..mesh.triangles.len() as u32)
-            .filter(|&t| {
-                let tri = mesh.triangles[t as usize];
-                let part =
-                    majority(tri.map(|v| self.first_parts[mesh.params[v as usize].tri as usize]));
-                rank_of[part as usize] == rank
-            })
-            .collect())
-    }
+    near
 }
 
 impl BandPass {
@@ -554,9 +660,13 @@ impl BandPass {
     ) -> BandPass {
         let mesh = &pass.mesh;
         let meeting = pieces_meeting(&mesh.triangles, &owner, mesh.points.len());
-        let pins = Pins::new(&mesh.triangles, &owner, mesh.points.len(), |v| {
+        let mut pins = Pins::new(&mesh.triangles, &owner, mesh.points.len(), |v| {
             meeting[v] >= 2 || !band[v]
         });
+        // The rim is held by interiors no part sees, as by kept triangles.
+        for (kept, &r) in pins.kept.iter_mut().zip(&pass.rim) {
+            *kept |= r != NONE;
+        }
         let mut cover: Vec<Vec<u32>> = vec![Vec::new(); k];
         for (tri, &p) in mesh.triangles.iter().zip(&owner) {
             if p != NONE {
@@ -577,21 +687,6 @@ impl BandPass {
             old,
         }
     }
-}
-
-/// `first` and the pieces of `outcomes`, joined on their pinned vertices.
-fn join_pieces(
-    remesher: &Remesher,
-    mut pieces: Vec<super::work::Piece>,
-    outcomes: Vec<TaskOutcome>,
-) -> Result<Joined> {
-    for outcome in outcomes {
-        match outcome.0 {
-            Outcome::Piece(piece) => pieces.push(*piece),
-            Outcome::Sizes { .. } => return Err(wrong_outcome("a remeshing")),
-        }
-    }
-    join(remesher.surface, &pieces)
 }
 
 fn wrong_outcome(stage: &str) -> Error {

@@ -12,12 +12,15 @@ use glam::DVec3;
 
 /// The pieces joined: the mesh, per vertex its index in the start it was
 /// pinned to or [`NONE`] and its target size, and per control triangle
-/// the pieces' shrink factors.
+/// the pieces' shrink factors; and per vertex its id on the rim the band
+/// shares with the first pass's interiors, or [`NONE`]
+/// ([`super::interior`]: the job sets it, a join knows no rim).
 pub(super) struct Joined {
     pub(super) mesh: SurfaceMesh,
     pub(super) from: Vec<u32>,
     pub(super) sizes: Vec<f64>,
     pub(super) shrunk: Vec<f64>,
+    pub(super) rim: Vec<u32>,
 }
 
 /// The triangles of `mesh` no part remeshes (`owner` [`NONE`]), as a
@@ -126,6 +129,7 @@ pub(super) fn join(surface: &Surface, pieces: &[Piece]) -> Result<Joined> {
     mesh.hard_edges = curves.pairs;
     mesh.hard_edge_curves = curves.curves;
     Ok(Joined {
+        rim: vec![NONE; mesh.points.len()],
         mesh,
         from,
         sizes,

@@ -21,7 +21,7 @@
 //! interface the first pass leaves a trace: the start's vertices there,
 //! copied from the control net's shapes, never moved. A second partition,
 //! whose cuts METIS is told to keep away from the first one's (dearer
-//! next to them), cuts the band of the joined mesh within [`BAND_RINGS`]
+//! next to them), cuts the joined mesh within [`BAND_RINGS`]
 //! edges of an old interface (each triangle to the part most of its
 //! vertices' control triangles are in). Each part remeshes its piece of
 //! the band once more, its new interface and the band's rim pinned; the
@@ -37,6 +37,15 @@
 //! those pieces) is touched up, each blob uncut, by flips and relaxation
 //! that make no triangle worse.
 //!
+//! **No process holds the whole mesh.** The later passes reach only so
+//! far from the first interfaces, so each first-pass piece is split
+//! [`SHARED_RINGS`] edges from them ([`interior`]): its band goes to every
+//! process, which joins the bands alike and runs the later passes on that
+//! mesh alone; its interior stays with the process that made it. The rim
+//! between them stays pinned. The finished mesh is the last band's
+//! triangles and the interiors', numbered the same way on any process, so
+//! a rank hands out its own piece with the whole mesh's node ids.
+//!
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
 //! triangles sharing a vertex with them (where a vertex next to the
@@ -47,12 +56,15 @@
 //!
 //! The files: [`job`] (the stages and their tasks, for threads and for
 //! MPI ranks alike), [`plan`] (the first pass's start, planned over the
-//! whole net), [`outcome`] (a task's outcome as bytes), [`cuts`]
+//! whole net), [`interior`] (a first-pass piece split into its band and
+//! its interior, and the finished mesh put together from them),
+//! [`outcome`] (a task's outcome as bytes), [`cuts`]
 //! (which part a triangle goes to, shared vertices, rings, fans, blobs),
 //! [`work`] (one part's sub-net, piece and remesh, and the workers) and
 //! [`join`] (pieces into one mesh).
 
 mod cuts;
+mod interior;
 mod job;
 mod join;
 mod outcome;
@@ -79,6 +91,14 @@ const FIRST_RINGS: usize = 1;
 /// to 5.8 times; the whole run refuses none) and kept a 14.04° triangle;
 /// with two, 4 such refusals and 23.52°, for no measurable time.
 const LATER_RINGS: usize = 2;
+
+/// The later passes see the first pass's mesh within this many edges of
+/// an interface, which every process holds ([`interior`]); the rest stays
+/// where it was made. The band pass reaches [`BAND_RINGS`] edges from an
+/// interface and the crossings' blobs [`CROSSING_RINGS`] edges from a
+/// vertex on one, the touch-up [`TOUCH_UP_RINGS`] more: the rim, pinned,
+/// lies past them.
+const SHARED_RINGS: usize = 16;
 
 /// The second pass remeshes the vertices within this many edges of a
 /// first-pass interface.

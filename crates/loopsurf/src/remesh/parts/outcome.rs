@@ -3,36 +3,41 @@
 //! stream (magic, version, 64-bit counts, CRC-32) with its own magic.
 //!
 //! Layout of one outcome after the frame's header, little-endian; the tag
-//! is 0 for a part's sizes, 1 for a remeshed piece:
+//! is 0 for a part's sizes, 1 for a remeshed piece, 2 for the band of a
+//! first-pass piece:
 //!
 //! | bytes | content |
 //! |---|---|
 //! | 56 per vertex | x y z (f64), control triangle (u32), v w (f64), pinned start vertex or 0xffffffff (u32), target size (f64) |
 //! | 16 per triangle | a b c (u32), model face (u32) |
 //! | 12 per control-triangle value | control triangle (u32), value (f64): a piece's shrink factors, or the sizes of a part's own triangles where they follow curvature |
-//! | 8 per number | the largest size, then the triangles expected; or the diagonal, then the chord error measured if any |
+//! | 8 per number | the largest size, then the triangles expected; or the diagonal, then the chord error measured if any, then (a band) how many vertices its interior holds off the rim |
+//! | 4 per rim vertex | a band's vertex (u32) that its interior shares, in the interior's order |
 //!
 //! A rank's outcomes are a u64 count, then per outcome its task (u64),
 //! its length in bytes (u64) and the outcome. Every f64 travels as its
 //! bits, so the receiver joins exactly what the sender computed.
 
 use super::super::finish::without_curves;
+use super::interior::Interior;
 use super::work::{PartWork, Piece};
 use crate::error::{Error, Result};
 use crate::parameters::SurfacePoint;
-use crate::stream::{seal, start, Frame};
+use crate::stream::{seal, start, Frame, Reader};
 use glam::DVec3;
 
 const MAGIC: &[u8; 8] = b"LOOPTASK";
-const SIZES: [u64; 4] = [56, 16, 12, 8];
-const NAMES: [&str; 4] = [
+const SIZES: [u64; 5] = [56, 16, 12, 8, 4];
+const NAMES: [&str; 5] = [
     "vertices",
     "triangles",
     "control-triangle values",
     "numbers",
+    "rim vertices",
 ];
 const SIZES_TAG: u32 = 0;
 const PIECE: u32 = 1;
+const BAND: u32 = 2;
 
 /// What one task of a [`super::PartsJob`] stage computed.
 pub struct TaskOutcome(pub(super) Outcome);
@@ -51,6 +56,17 @@ pub(super) enum Outcome {
         work: Option<Box<PartWork>>,
     },
     Piece(Box<Piece>),
+    /// A first-pass piece split where the later passes cannot reach
+    /// ([`super::interior::split`]): its band, the band's vertices on the
+    /// rim it shares with the interior (in the interior's order), how many
+    /// vertices the interior holds off the rim, and the interior where it
+    /// was made here (not sent: the rank that made it keeps it).
+    Band {
+        band: Box<Piece>,
+        rim: Vec<u32>,
+        inner: usize,
+        interior: Option<Box<Interior>>,
+    },
 }
 
 impl TaskOutcome {
@@ -64,39 +80,19 @@ impl TaskOutcome {
                 sizes,
                 ..
             } => {
-                start(&mut out, MAGIC, SIZES_TAG, &[0, 0, sizes.len() as u64, 2]);
+                start(
+                    &mut out,
+                    MAGIC,
+                    SIZES_TAG,
+                    &[0, 0, sizes.len() as u64, 2, 0],
+                );
                 pairs(&mut out, sizes);
                 f64s(&mut out, &[*largest, *expected]);
             }
-            Outcome::Piece(piece) => {
-                let mesh = &piece.mesh;
-                let numbers = 1 + mesh.deviation.is_some() as u64;
-                let counts = [
-                    mesh.points.len() as u64,
-                    mesh.triangles.len() as u64,
-                    piece.shrunk.len() as u64,
-                    numbers,
-                ];
-                start(&mut out, MAGIC, PIECE, &counts);
-                for (i, x) in mesh.points.iter().enumerate() {
-                    let at = mesh.params[i];
-                    f64s(&mut out, &x.to_array());
-                    out.extend_from_slice(&at.tri.to_le_bytes());
-                    f64s(&mut out, &[at.v, at.w]);
-                    out.extend_from_slice(&piece.pinned[i].to_le_bytes());
-                    f64s(&mut out, &[piece.sizes[i]]);
-                }
-                for (tri, face) in mesh.triangles.iter().zip(&mesh.faces) {
-                    for i in tri.iter().chain([face]) {
-                        out.extend_from_slice(&i.to_le_bytes());
-                    }
-                }
-                pairs(&mut out, &piece.shrunk);
-                f64s(&mut out, &[mesh.diagonal]);
-                if let Some(d) = mesh.deviation {
-                    f64s(&mut out, &[d]);
-                }
-            }
+            Outcome::Piece(piece) => write_piece(&mut out, PIECE, piece, &[], None),
+            Outcome::Band {
+                band, rim, inner, ..
+            } => write_piece(&mut out, BAND, band, rim, Some(*inner)),
         }
         seal(out)
     }
@@ -111,9 +107,9 @@ impl TaskOutcome {
             names: &NAMES,
         };
         let (mut r, tag, counts) = frame.open(bytes)?;
-        let [nv, nt, ns, nn] = [0, 1, 2, 3].map(|i| counts[i] as usize);
+        let [nv, nt, ns, nn, nr] = [0, 1, 2, 3, 4].map(|i| counts[i] as usize);
         match (tag, nn) {
-            (SIZES_TAG, 2) if nv + nt == 0 => {
+            (SIZES_TAG, 2) if nv + nt + nr == 0 => {
                 let sizes = (0..ns).map(|_| (r.u32(), r.f64())).collect();
                 Ok(TaskOutcome(Outcome::Sizes {
                     sizes,
@@ -122,50 +118,111 @@ impl TaskOutcome {
                     work: None,
                 }))
             }
-            (PIECE, 1 | 2) => {
-                let mut points = Vec::with_capacity(nv);
-                let mut params = Vec::with_capacity(nv);
-                let mut pinned = Vec::with_capacity(nv);
-                let mut sizes = Vec::with_capacity(nv);
-                for _ in 0..nv {
-                    points.push(DVec3::new(r.f64(), r.f64(), r.f64()));
-                    let tri = r.u32();
-                    params.push(SurfacePoint {
-                        tri,
-                        v: r.f64(),
-                        w: r.f64(),
-                    });
-                    pinned.push(r.u32());
-                    sizes.push(r.f64());
+            (PIECE, 1 | 2) if nr == 0 => {
+                let piece = read_piece(&mut r, [nv, nt, ns], nn == 2)?;
+                Ok(TaskOutcome(Outcome::Piece(Box::new(piece))))
+            }
+            (BAND, 2 | 3) => {
+                let band = read_piece(&mut r, [nv, nt, ns], nn == 3)?;
+                let inner = r.u64() as usize;
+                let rim = (0..nr).map(|_| r.u32()).collect::<Vec<_>>();
+                if let Some(&v) = rim.iter().find(|&&v| v as usize >= nv) {
+                    return Err(bad(format!("rim vertex {v} of a band of {nv}")));
                 }
-                let mut triangles = Vec::with_capacity(nt);
-                let mut faces = Vec::with_capacity(nt);
-                for t in 0..nt {
-                    let tri = [r.u32(), r.u32(), r.u32()];
-                    if let Some(&v) = tri.iter().find(|&&v| v as usize >= nv) {
-                        return Err(bad(format!(
-                            "triangle {t} names vertex {v} of a piece of {nv}"
-                        )));
-                    }
-                    triangles.push(tri);
-                    faces.push(r.u32());
-                }
-                let shrunk = (0..ns).map(|_| (r.u32(), r.f64())).collect();
-                let diagonal = r.f64();
-                let deviation = (nn == 2).then(|| r.f64());
-                let mesh = without_curves(points, triangles, params, faces, deviation, diagonal);
-                Ok(TaskOutcome(Outcome::Piece(Box::new(Piece {
-                    mesh,
-                    pinned,
-                    sizes,
-                    shrunk,
-                }))))
+                Ok(TaskOutcome(Outcome::Band {
+                    band: Box::new(band),
+                    rim,
+                    inner,
+                    interior: None,
+                }))
             }
             _ => Err(bad(format!(
-                "tag {tag} with {nn} numbers: neither a largest size nor a piece"
+                "tag {tag} with {nn} numbers and {nr} rim vertices: neither a largest size, a piece nor a band"
             ))),
         }
     }
+}
+
+/// `piece` after a frame's header with tag `tag`, then (a band) its
+/// interior's count of vertices off the rim `inner` and its rim vertices
+/// `rim`.
+fn write_piece(out: &mut Vec<u8>, tag: u32, piece: &Piece, rim: &[u32], inner: Option<usize>) {
+    let mesh = &piece.mesh;
+    let numbers = 1 + mesh.deviation.is_some() as u64 + inner.is_some() as u64;
+    let counts = [
+        mesh.points.len() as u64,
+        mesh.triangles.len() as u64,
+        piece.shrunk.len() as u64,
+        numbers,
+        rim.len() as u64,
+    ];
+    start(out, MAGIC, tag, &counts);
+    for (i, x) in mesh.points.iter().enumerate() {
+        let at = mesh.params[i];
+        f64s(out, &x.to_array());
+        out.extend_from_slice(&at.tri.to_le_bytes());
+        f64s(out, &[at.v, at.w]);
+        out.extend_from_slice(&piece.pinned[i].to_le_bytes());
+        f64s(out, &[piece.sizes[i]]);
+    }
+    for (tri, face) in mesh.triangles.iter().zip(&mesh.faces) {
+        for i in tri.iter().chain([face]) {
+            out.extend_from_slice(&i.to_le_bytes());
+        }
+    }
+    pairs(out, &piece.shrunk);
+    f64s(out, &[mesh.diagonal]);
+    if let Some(d) = mesh.deviation {
+        f64s(out, &[d]);
+    }
+    if let Some(n) = inner {
+        out.extend_from_slice(&(n as u64).to_le_bytes());
+    }
+    for v in rim {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+}
+
+/// A piece of `nv` vertices, `nt` triangles and `ns` shrink factors, and
+/// a chord error measured where `measured`, as [`write_piece`] wrote it.
+fn read_piece(r: &mut Reader, [nv, nt, ns]: [usize; 3], measured: bool) -> Result<Piece> {
+    let mut points = Vec::with_capacity(nv);
+    let mut params = Vec::with_capacity(nv);
+    let mut pinned = Vec::with_capacity(nv);
+    let mut sizes = Vec::with_capacity(nv);
+    for _ in 0..nv {
+        points.push(DVec3::new(r.f64(), r.f64(), r.f64()));
+        let tri = r.u32();
+        params.push(SurfacePoint {
+            tri,
+            v: r.f64(),
+            w: r.f64(),
+        });
+        pinned.push(r.u32());
+        sizes.push(r.f64());
+    }
+    let mut triangles = Vec::with_capacity(nt);
+    let mut faces = Vec::with_capacity(nt);
+    for t in 0..nt {
+        let tri = [r.u32(), r.u32(), r.u32()];
+        if let Some(&v) = tri.iter().find(|&&v| v as usize >= nv) {
+            return Err(bad(format!(
+                "triangle {t} names vertex {v} of a piece of {nv}"
+            )));
+        }
+        triangles.push(tri);
+        faces.push(r.u32());
+    }
+    let shrunk = (0..ns).map(|_| (r.u32(), r.f64())).collect();
+    let diagonal = r.f64();
+    let deviation = measured.then(|| r.f64());
+    let mesh = without_curves(points, triangles, params, faces, deviation, diagonal);
+    Ok(Piece {
+        mesh,
+        pinned,
+        sizes,
+        shrunk,
+    })
 }
 
 /// A rank's outcomes, each with its task, as one buffer (see the module
