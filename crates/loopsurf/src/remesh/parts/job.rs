@@ -29,6 +29,7 @@ use crate::remesh::budget::expected_over;
 use crate::remesh::{Remesher, Settled};
 use crate::topology::NONE;
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// Remeshing in parts, stage by stage (see the module doc): make one with
 /// [`Remesher::parts_job`], then until [`PartsJob::is_done`], run the
@@ -44,8 +45,10 @@ pub struct PartsJob<'a> {
     first_parts: Vec<u32>,
     stage: Stage,
     /// The parts' works this process built in the sizes stage, kept for
-    /// its first pass.
-    works: Vec<Option<PartWork>>,
+    /// its first pass, each taken (and dropped) by its first-pass task:
+    /// held until the first pass ended, they took one process remeshing
+    /// bunny00 refined twice in 32 parts to 6.14 GB, against 4.28 GB.
+    works: Vec<Mutex<Option<PartWork>>>,
     /// Per part: what its first-pass task weighed, which deals the parts'
     /// tasks, and so their interiors and their triangles of the finished
     /// mesh, to the ranks.
@@ -128,7 +131,7 @@ impl<'a> PartsJob<'a> {
             k,
             first_parts: first.parts().to_vec(),
             stage: Stage::Sizes,
-            works: (0..k).map(|_| None).collect(),
+            works: (0..k).map(|_| Mutex::new(None)).collect(),
             first_weights: Vec::new(),
             interiors: (0..k).map(|_| None).collect(),
             inner: Vec::new(),
@@ -228,17 +231,18 @@ impl<'a> PartsJob<'a> {
                 }
             }
             Stage::First(f) => {
-                let built;
-                let work = match &self.works[i] {
+                let kept = self.works[i]
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .take();
+                let work = match kept {
                     Some(work) => work,
-                    None => {
-                        built = self.first_work(i)?;
-                        &built
-                    }
+                    None => self.first_work(i)?,
                 };
                 let net = remesher.surface.net();
                 let piece =
                     work.remesh_first(net, &f.plan, &f.pins, remesher.sliver_cuts, i as u32)?;
+                drop(work);
                 let (band, rim, interior) = split(piece, SHARED_RINGS);
                 Outcome::Band {
                     band: Box::new(band),
@@ -332,8 +336,10 @@ impl<'a> PartsJob<'a> {
         Ok(match stage {
             Stage::Sizes => Stage::First(Box::new(self.first_pass(outcomes)?)),
             Stage::First(f) => {
-                // Dropped side by side: a part's surface is many small blocks.
-                self.works.par_iter_mut().for_each(|w| *w = None);
+                // The works of parts another process ran, dropped side by
+                // side: a part's surface is many small blocks.
+                (self.works.par_iter_mut())
+                    .for_each(|w| *w.get_mut().unwrap_or_else(|e| e.into_inner()) = None);
                 let shared = f.pins.id.len();
                 drop(f); // the plan and pins, before the join holds the band
                 let joined = self.join_bands(shared, outcomes)?;
@@ -387,7 +393,7 @@ impl<'a> PartsJob<'a> {
                     largest = largest.max(h);
                     weights.push(expected.round() as usize);
                     per_triangle.extend(sizes);
-                    self.works[p] = work.map(|w| *w);
+                    *self.works[p].get_mut().unwrap_or_else(|e| e.into_inner()) = work.map(|w| *w);
                 }
                 _ => return Err(wrong_outcome("sizes")),
             }
