@@ -502,10 +502,11 @@ impl<'a> PartsJob<'a> {
         BandPass::new(moved, &band, owner, count, nobody, Vec::new())
     }
 
-    /// The band's first pass from the first pass's outcomes: each part's
-    /// band with its rim vertices pinned to ids past the `shared` ids of
-    /// the plan, joined; the interiors this process made kept, and where
-    /// the finished mesh's vertices go.
+    /// The bands of the first pass's outcomes joined, each band's rim
+    /// vertices pinned to ids past the plan's `shared` ones (so the join
+    /// keeps them apart and the rim can be followed); the interiors this
+    /// process made kept, and each part's counts that number the finished
+    /// mesh.
     fn join_bands(&mut self, shared: usize, outcomes: Vec<TaskOutcome>) -> Result<Joined> {
         let mut bands = Vec::with_capacity(outcomes.len());
         let (mut inner, mut rims) = (Vec::new(), Vec::new());

@@ -124,7 +124,13 @@ impl TaskOutcome {
             }
             (BAND, 2 | 3) => {
                 let band = read_piece(&mut r, [nv, nt, ns], nn == 3)?;
-                let inner = r.u64() as usize;
+                let inner = r.u64();
+                if inner > u32::MAX as u64 {
+                    return Err(bad(format!(
+                        "an interior of {inner} vertices: more than vertex ids can number"
+                    )));
+                }
+                let inner = inner as usize;
                 let rim = (0..nr).map(|_| r.u32()).collect::<Vec<_>>();
                 if let Some(&v) = rim.iter().find(|&&v| v as usize >= nv) {
                     return Err(bad(format!("rim vertex {v} of a band of {nv}")));
@@ -301,5 +307,38 @@ fn bad(message: String) -> Error {
     Error::Stream {
         what: "task outcome",
         message,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{seal, start, TaskOutcome, BAND, MAGIC};
+
+    /// A band of no vertices whose numbers are the diagonal and `inner`,
+    /// with the rim vertices `rim`, checksummed as a sender would.
+    fn band(inner: u64, rim: &[u32]) -> Vec<u8> {
+        let mut out = Vec::new();
+        start(&mut out, MAGIC, BAND, &[0, 0, 0, 2, rim.len() as u64]);
+        out.extend_from_slice(&1.0f64.to_le_bytes());
+        out.extend_from_slice(&inner.to_le_bytes());
+        for v in rim {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        seal(out)
+    }
+
+    #[test]
+    fn a_band_naming_what_it_cannot_hold_is_refused() {
+        assert!(TaskOutcome::from_bytes(&band(7, &[])).is_ok());
+        let err = TaskOutcome::from_bytes(&band(1 << 40, &[]))
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("more than vertex ids can number"), "{err}");
+        let err = TaskOutcome::from_bytes(&band(7, &[0]))
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("rim vertex 0 of a band of 0"), "{err}");
     }
 }
