@@ -86,6 +86,15 @@ fn surface_streams_replay_their_fuzz_inputs() {
     });
 }
 
+/// The outcomes of a job of remeshing by parts, as ranks send them
+/// (fuzz/fuzz_targets/outcomes.rs).
+#[test]
+fn remesh_outcomes_replay_their_fuzz_inputs() {
+    replay("outcomes", |data| {
+        let _ = loopsurf::remesh::outcomes_from_bytes(data);
+    });
+}
+
 /// A file of a hundred bytes claiming 2³¹ vertices is refused (or read for
 /// what it holds) without reserving memory for the claim.
 #[test]
