@@ -39,12 +39,14 @@
 //!
 //! **No process holds the whole mesh.** The later passes reach only so
 //! far from the first interfaces, so each first-pass piece is split
-//! [`SHARED_RINGS`] edges from them ([`interior`]): its band goes to every
-//! process, which joins the bands alike and runs the later passes on that
-//! mesh alone; its interior stays with the process that made it. The rim
-//! between them stays pinned. The finished mesh is the last band's
-//! triangles and the interiors', numbered the same way on any process, so
-//! a rank hands out its own piece with the whole mesh's node ids.
+//! [`SHARED_RINGS`] edges from them ([`interior`]): this shared band,
+//! wider than any later pass reaches, goes to every process, which joins
+//! the shared bands alike and runs the later passes on that mesh alone
+//! (the "joined mesh" above); the piece's interior stays with the process
+//! that made it. The rim between them stays pinned. The finished mesh is
+//! the shared band's triangles as the last pass left them and the
+//! interiors', numbered the same way on any process, so a rank hands out
+//! its own piece with the whole mesh's node ids.
 //!
 //! **Each part sees only its own surface.** A part is remeshed on the
 //! surface of its sub-net ([`crate::partition::Part`]): its triangles, the
