@@ -7,7 +7,7 @@
 
 mod common;
 
-use loopsurf::{ControlNet, Remesher, Surface, SurfaceMesh};
+use loopsurf::{ControlNet, Remesher, Surface, SurfaceMesh, SurfaceMode};
 use std::collections::{HashMap, HashSet};
 
 /// The adapted remesh (default tolerance) of `surface` in `k` parts on a
@@ -213,6 +213,50 @@ fn an_open_creased_surface_in_parts_has_the_whole_runs_boundary() {
         assert_eq!(surface.point(at.tri as usize, at.v, at.w).unwrap(), *p);
     }
     print_against_whole(&parts, &whole, "pig in 5 parts");
+}
+
+/// fandisk's displaced surface (the approximating surface plus a linear
+/// correction through the net's points) in 4 parts: every vertex is that
+/// surface's point at its parameters, bit for bit, as in the whole run
+/// (the parts' sub-nets carry the whole's displacement; without it their
+/// vertices lay on the approximating surface, 3.5e-3 of the diagonal
+/// away), and the count is the whole run's within 2%.
+#[test]
+fn a_displaced_surface_in_parts_keeps_its_displacement() {
+    let Some(path) = common::cgal_mesh("fandisk.off") else {
+        return;
+    };
+    let mut net = ControlNet::read(path).unwrap();
+    net.tag_by_angle(30.0).unwrap();
+    let surface = Surface::with_mode(&net, SurfaceMode::Displacement).unwrap();
+    let approximating = Surface::new(&net).unwrap();
+    let diagonal = net.bbox_diagonal();
+    let run = |k: usize| {
+        (Remesher::new(&surface).size(0.01 * diagonal).parts(k))
+            .run()
+            .unwrap()
+    };
+    let (whole, parts) = (run(1), run(4));
+    let mut apart: f64 = 0.0;
+    for (i, (p, at)) in parts.points.iter().zip(&parts.params).enumerate() {
+        let (tri, v, w) = (at.tri as usize, at.v, at.w);
+        assert_eq!(
+            surface.point(tri, v, w).unwrap(),
+            *p,
+            "vertex {i} is not the displaced surface at its parameters"
+        );
+        apart = apart.max((approximating.point(tri, v, w).unwrap() - *p).length());
+    }
+    assert!(
+        apart > 1e-4 * diagonal,
+        "the displaced and approximating surfaces are {apart:e} apart: nothing to tell"
+    );
+    assert_eq!(boundary_loops(&parts, "displaced fandisk in 4 parts"), 0);
+    let count = parts.triangles.len() as f64 / whole.triangles.len() as f64;
+    assert!(
+        (count - 1.0).abs() <= 0.02,
+        "{count} times the whole's triangles"
+    );
 }
 
 /// anchor.off (adapted, as `loopsurf mesh` does by default), whose

@@ -86,7 +86,7 @@ impl PartWork {
             .iter()
             .map(|&g| faces[g as usize])
             .collect();
-        let surface = Surface::sharing_configurations(part.net(), remesher.surface)?;
+        let surface = Surface::part_of(remesher.surface, &part)?;
         let sizing = remesher.sizing_with(&surface, settled);
         let (tolerance, budget) = (settled.tolerance, settled.budget);
         let shrunk = part
