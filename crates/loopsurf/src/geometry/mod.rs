@@ -1,13 +1,16 @@
 //! Plain triangle geometry shared by the readers, validation, the mesher
 //! and adaptive subdivision: measures of one triangle of points (normals,
-//! area, angles), edge swapping in a parameter domain, and the crate's
-//! absent index. Nothing here knows about subdivision.
+//! area, angles), edge swapping in a parameter domain, points in
+//! Z-order, and the crate's absent index. Nothing here knows about subdivision.
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 pub mod crossings;
 pub(crate) mod swap;
+mod z_order;
+
+pub use z_order::z_order;
 
 /// An absent index: the missing triangle beside a boundary edge, a
 /// half-edge without a twin, a vertex no triangle uses. One value for the

@@ -28,6 +28,7 @@
 //! surface points.
 
 mod assemble;
+mod by_chunks;
 pub(crate) mod density;
 pub mod high_order;
 mod isotropic;

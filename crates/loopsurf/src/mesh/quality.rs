@@ -2,6 +2,7 @@
 //! per vertex, and the chord error re-measured with snap (the true distance
 //! to the surface, not to the same-parameter point).
 
+use super::by_chunks::{map_by_chunks, CHUNK_TRIANGLES};
 use super::SurfaceMesh;
 use crate::error::Result;
 use crate::geometry::{area_normal, max_cosine};
@@ -191,12 +192,13 @@ impl SurfaceMesh {
     }
 
     /// Exact curvature at every vertex (unreliable, and zero, exactly at
-    /// special vertices: see [`Curvature::reliable`]).
+    /// special vertices: see [`Curvature::reliable`]). On a large net,
+    /// evaluated chunk by chunk ([`super::by_chunks`]): the same bits, but
+    /// without making every patch of `surface` and keeping them.
     pub fn vertex_curvature(&self, surface: &Surface) -> Result<Vec<Curvature>> {
-        self.params
-            .par_iter()
-            .map(|p| surface.curvature(p.tri as usize, p.v, p.w))
-            .collect()
+        map_by_chunks(surface, &self.params, CHUNK_TRIANGLES, |s, t, v, w| {
+            s.curvature(t, v, w)
+        })
     }
 
     /// The largest distance from the mesh to the surface at the centroid of
