@@ -1,9 +1,13 @@
 //! Exact evaluation throughput (all 18 numbers), single thread, on CGAL's
 //! pig and bunny: (i) one point per triangle in random triangle order,
 //! (ii) 16 points per triangle, triangle by triangle. Also the build time.
+//! And the curvature at every vertex of a mesh, on the whole surface
+//! against chunk by chunk ([`SurfaceMesh::vertex_curvature`]), each from a
+//! surface with no patch made, with the bytes the surface keeps after.
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use loopsurf::{ControlNet, Surface};
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
+use loopsurf::{ControlNet, Density, Mesher, Surface, SurfaceMesh};
+use rayon::prelude::*;
 use std::path::PathBuf;
 
 fn mesh(name: &str) -> Option<ControlNet> {
@@ -94,5 +98,65 @@ fn eval(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, eval);
+/// The curvature at every vertex of the chart mesh (4 triangles per
+/// control triangle) of bunny00 refined once, whose net is large enough to
+/// be evaluated chunk by chunk, on the pool's threads: on the whole
+/// surface, which makes every patch and keeps them, against chunk by
+/// chunk.
+fn vertex_curvature(c: &mut Criterion) {
+    let Some(coarse) = mesh("bunny00.off") else {
+        return;
+    };
+    let net = (loopsurf::refine::refine_uniform(&coarse, 1).unwrap()).into_net();
+    let surface = Surface::new(&net).unwrap();
+    let chart: SurfaceMesh = (Mesher::new(&surface).density(Density::Uniform(2)))
+        .run()
+        .unwrap();
+    let whole = |s: &Surface| -> f64 {
+        (chart.params.par_iter())
+            .map(|p| s.curvature(p.tri as usize, p.v, p.w).unwrap().mean)
+            .sum()
+    };
+    let chunks = |s: &Surface| -> f64 {
+        chart
+            .vertex_curvature(s)
+            .unwrap()
+            .iter()
+            .map(|k| k.mean)
+            .sum()
+    };
+    for (label, run) in [
+        ("whole", &whole as &dyn Fn(&Surface) -> f64),
+        ("chunks", &chunks),
+    ] {
+        let fresh = Surface::new(&net).unwrap();
+        let before = fresh.memory_bytes();
+        run(&fresh);
+        eprintln!(
+            "vertex curvature, {label}: the surface keeps {} MB after, {} MB before",
+            fresh.memory_bytes() >> 20,
+            before >> 20
+        );
+    }
+    let mut group = c.benchmark_group("vertex_curvature_bunny00_refined");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(chart.params.len() as u64));
+    group.bench_function("whole", |b| {
+        b.iter_batched(
+            || Surface::new(&net).unwrap(),
+            |s| whole(&s),
+            BatchSize::LargeInput,
+        )
+    });
+    group.bench_function("chunks", |b| {
+        b.iter_batched(
+            || Surface::new(&net).unwrap(),
+            |s| chunks(&s),
+            BatchSize::LargeInput,
+        )
+    });
+    group.finish();
+}
+
+criterion_group!(benches, eval, vertex_curvature);
 criterion_main!(benches);

@@ -2,7 +2,7 @@
 //! per vertex, and the chord error re-measured with snap (the true distance
 //! to the surface, not to the same-parameter point).
 
-use super::by_chunks::{map_by_chunks, CHUNK_TRIANGLES};
+use super::by_chunks::{chunk_size, map_by_chunks};
 use super::SurfaceMesh;
 use crate::error::Result;
 use crate::geometry::{area_normal, max_cosine};
@@ -196,7 +196,8 @@ impl SurfaceMesh {
     /// evaluated chunk by chunk ([`super::by_chunks`]): the same bits, but
     /// without making every patch of `surface` and keeping them.
     pub fn vertex_curvature(&self, surface: &Surface) -> Result<Vec<Curvature>> {
-        map_by_chunks(surface, &self.params, CHUNK_TRIANGLES, |s, t, v, w| {
+        let chunk = chunk_size(surface.net().triangles().len());
+        map_by_chunks(surface, &self.params, chunk, |s, t, v, w| {
             s.curvature(t, v, w)
         })
     }
