@@ -316,6 +316,9 @@ int main(int argc, char** argv) {
     if (st == LS_OK) st = ls_surface_build(net, &surface);
     if (st == LS_OK) st = ls_remesh_job_new(surface, &a.remesh, rank_, ranks_, &job);
     agree(st == LS_OK ? NULL : ls_last_error());
+    /* The surface holds what it needs of the net. */
+    ls_net_free(net);
+    net = NULL;
     if (a.verbose) print_peak_rss("reading the net and building its surface");
 
     size_t* counts = malloc(sizeof *counts * (size_t)ranks_);
@@ -373,7 +376,6 @@ int main(int argc, char** argv) {
     ls_trimesh_free(piece);
     ls_remesh_job_free(job);
     ls_surface_free(surface);
-    ls_net_free(net);
     MPI_Finalize();
     return 0;
 }

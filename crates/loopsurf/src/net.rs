@@ -15,9 +15,13 @@ use std::path::Path;
 /// and corner tags: the control net of a Loop subdivision surface.
 ///
 /// Vertices and triangles keep the order they were given in (0-based).
+///
+/// A clone shares the positions and the connectivity (neither changes
+/// once built), so a surface built from a net holds no second copy of
+/// them.
 #[derive(Debug, Clone)]
 pub struct ControlNet {
-    points: Vec<DVec3>,
+    points: std::sync::Arc<Vec<DVec3>>,
     topo: std::sync::Arc<Topology>,
     features: Features,
     welded: usize,
@@ -148,7 +152,7 @@ impl ControlNet {
         let topo = Topology::new(nverts, checked)?;
         let features = Features::new(&topo);
         let net = ControlNet {
-            points,
+            points: std::sync::Arc::new(points),
             topo: std::sync::Arc::new(topo),
             features,
             welded: 0,
@@ -160,7 +164,7 @@ impl ControlNet {
     /// Assembles a net whose topology is known to be valid (refinement output).
     pub(crate) fn from_parts(points: Vec<DVec3>, topo: Topology, features: Features) -> ControlNet {
         ControlNet {
-            points,
+            points: std::sync::Arc::new(points),
             topo: std::sync::Arc::new(topo),
             features,
             welded: 0,
@@ -173,12 +177,17 @@ impl ControlNet {
         self.topo.clone()
     }
 
+    /// The vertex positions, shared.
+    pub(crate) fn shared_points(&self) -> std::sync::Arc<Vec<DVec3>> {
+        self.points.clone()
+    }
+
     /// The same net (topology and hard features) with other vertex
     /// positions, one per vertex, taken as they are.
     pub(crate) fn with_points(&self, points: Vec<DVec3>) -> ControlNet {
         debug_assert_eq!(points.len(), self.points.len());
         ControlNet {
-            points,
+            points: std::sync::Arc::new(points),
             topo: self.topo.clone(),
             features: self.features.clone(),
             welded: self.welded,

@@ -110,16 +110,11 @@ fn refined_vertices(net: &ControlNet, levels: u32) -> Result<u128> {
     Ok(vertices)
 }
 
-/// The positions of one refinement of the net, numbered as
-/// [`crate::Topology::refined`] numbers its vertices (the evaluator's, which
-/// builds the refined connectivity only when it first makes a patch).
-pub(crate) fn refine_points_once(net: &ControlNet) -> Result<Vec<DVec3>> {
-    refined_vertices(net, 1)?;
-    Ok(subdivide_points(
-        net.topology(),
-        net.features(),
-        net.points(),
-    ))
+/// The number of vertices of one refinement of the net (the evaluator's,
+/// which refines the points with the connectivity, when it first makes a
+/// patch); fails when they would not fit 32-bit indices.
+pub(crate) fn once_refined_vertices(net: &ControlNet) -> Result<usize> {
+    Ok(refined_vertices(net, 1)? as usize)
 }
 
 /// Refines the net uniformly `levels` times.
@@ -214,12 +209,34 @@ pub(crate) fn subdivide_points(
     features: &Features,
     points: &[DVec3],
 ) -> Vec<DVec3> {
+    subdivide_points_with(topo, features, points, MIN_PER_TASK)
+}
+
+/// [`subdivide_points`] on the calling thread alone (as
+/// [`Topology::refined_here`]): for a caller holding a lock that other
+/// threads wait on.
+pub(crate) fn subdivide_points_here(
+    topo: &Topology,
+    features: &Features,
+    points: &[DVec3],
+) -> Vec<DVec3> {
+    subdivide_points_with(topo, features, points, usize::MAX)
+}
+
+/// [`subdivide_points`], each loop split into tasks of at least `min_len`
+/// items.
+fn subdivide_points_with(
+    topo: &Topology,
+    features: &Features,
+    points: &[DVec3],
+    min_len: usize,
+) -> Vec<DVec3> {
     let sums = NeighbourSums::new(topo, features, points);
     let mut new_points = vec![DVec3::ZERO; points.len() + topo.num_edges()];
     let (vertex_points, edge_points) = new_points.split_at_mut(points.len());
     vertex_points
         .par_iter_mut()
-        .with_min_len(MIN_PER_TASK)
+        .with_min_len(min_len)
         .enumerate()
         .for_each(|(v, out)| {
             let x = points[v];
@@ -233,7 +250,7 @@ pub(crate) fn subdivide_points(
         });
     edge_points
         .par_iter_mut()
-        .with_min_len(MIN_PER_TASK)
+        .with_min_len(min_len)
         .enumerate()
         .for_each(|(e, out)| {
             let [a, b] = topo.edges()[e];
