@@ -243,8 +243,8 @@ impl Remeshing<'_> {
         let mut dirty: Option<HashSet<u32>> = None;
         // Built when a removal first needs to count crossings, and kept
         // across rounds: every change is noted in it, so its counts are
-        // those of the mesh as it is (on pig's fin, building it anew for
-        // each of many small rounds was 6% of the remeshing's time).
+        // those of the mesh as it is (built anew for each of the many
+        // small rounds at pig's fin, it took 6% of a run's samples).
         let mut near: Option<Near> = None;
         for _ in 0..ROUNDS {
             let mut candidates: Vec<u32> = Vec::new();
