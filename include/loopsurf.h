@@ -444,9 +444,10 @@ int ls_net_fit(const ls_net *net, const ls_fit_options *options, ls_net **out);
 #define LS_INTERPOLATE_DISPLACEMENT 2
 
 // Freezes a net into an immutable surface. The net is copied: it may be
-// changed or freed after. The build refines the net once; each triangle's
-// evaluation data is made the first time a query reaches it (any thread
-// may query at any time, and results do not depend on the order).
+// changed or freed after. The build refines nothing: the once-refined
+// net is made with the first query, and each triangle's evaluation data
+// the first time a query reaches it (any thread may query at any time,
+// and results do not depend on the order).
 int ls_surface_build(const ls_net *net, ls_surface **out);
 
 // Like `ls_surface_build`, but the surface passes through the net's points

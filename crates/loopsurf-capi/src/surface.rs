@@ -8,9 +8,10 @@ use loopsurf::{Surface, SurfaceMode};
 use std::ffi::c_int;
 
 /// Freezes a net into an immutable surface. The net is copied: it may be
-/// changed or freed after. The build refines the net once; each triangle's
-/// evaluation data is made the first time a query reaches it (any thread
-/// may query at any time, and results do not depend on the order).
+/// changed or freed after. The build refines nothing: the once-refined
+/// net is made with the first query, and each triangle's evaluation data
+/// the first time a query reaches it (any thread may query at any time,
+/// and results do not depend on the order).
 #[no_mangle]
 pub unsafe extern "C" fn ls_surface_build(net: *const ls_net, out: *mut *mut ls_surface) -> c_int {
     run("ls_surface_build", || {
