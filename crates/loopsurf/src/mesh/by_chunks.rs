@@ -59,10 +59,11 @@ where
 {
     let net = surface.net();
     let n = net.triangles().len();
+    let chunk = chunk.max(1);
     // Checked on the whole first, so that an error names the point's own
     // triangle, not its chunk's local one.
     (at.par_iter()).try_for_each(|p| surface.validate(p.tri as usize, p.v, p.w))?;
-    if n <= chunk.max(1) || at.is_empty() {
+    if n <= chunk || at.is_empty() {
         return (at.par_iter())
             .map(|p| f(surface, p.tri as usize, p.v, p.w))
             .collect();
